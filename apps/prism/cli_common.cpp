@@ -1,0 +1,106 @@
+#include "cli_common.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <mutex>
+#include <nlohmann/json.hpp>
+
+#include "prism/errors.hpp"
+#include "prism/image_io.hpp"
+
+namespace prism::cli {
+
+namespace {
+
+std::string pick_auto(Registry& registry) {
+  std::string best;
+  int best_rank = -1;
+  for (const auto& name : registry.backend_names_found()) {
+    try {
+      auto plugin = registry.backend(name);
+      if (plugin->probe().usable && plugin->desc().speed_rank > best_rank) {
+        best = name;
+        best_rank = plugin->desc().speed_rank;
+      }
+    } catch (const InputError&) {
+      // a plugin that fails to load is simply not a candidate for auto
+    }
+  }
+  if (best.empty()) throw InputError("-b auto: no usable backend found (run `prism list` to see why)");
+  return best;
+}
+
+}  // namespace
+
+BackendChoice open_backend(Registry& registry, const std::string& requested) {
+  const std::string name = requested == "auto" ? pick_auto(registry) : requested;
+  auto plugin = registry.backend(name);
+  PrismBackendProbe probe = plugin->probe();
+  if (!probe.usable) throw RuntimeError("backend '" + name + "' cannot run here: " + probe.reason);
+  std::unique_ptr<Backend> backend;
+  try {
+    backend = plugin->create();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw RuntimeError("backend '" + name + "' failed to start: " + e.what());
+  }
+  if (!backend) throw RuntimeError("backend '" + name + "' failed to start");
+  return {name, std::move(backend)};
+}
+
+double PhaseTimer::lap() {
+  auto now = std::chrono::steady_clock::now();
+  double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+  last_ = now;
+  return ms;
+}
+
+double PhaseTimer::total() const {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void write_stats(const std::string& file, const std::string& backend, const Scene& scene, const BackendStats& stats,
+                 const std::map<std::string, double>& ms) {
+  nlohmann::ordered_json j;
+  j["backend"] = backend;
+  j["plugins_loaded"] = scene.plugin_names();
+  j["kernel_features"] = stats.kernel_features;
+  j["rays"] = stats.rays;
+  j["rays_by_kind"] = stats.rays_by_kind;
+  nlohmann::ordered_json times;
+  for (const char* phase : {"load", "build", "compile", "render", "total"}) {
+    auto it = ms.find(phase);
+    times[phase] = it == ms.end() ? 0.0 : it->second;
+  }
+  j["ms"] = times;
+  write_text_file_atomically(file, j.dump(2) + "\n");
+}
+
+namespace {
+std::mutex progress_mutex;
+int progress_drawn = -1;
+}  // namespace
+
+std::function<void(double)> progress_bar() {
+  if (!::isatty(STDERR_FILENO)) return {};
+  progress_drawn = -1;
+  return [](double fraction) {
+    int percent = static_cast<int>(fraction * 100.0);
+    std::lock_guard lock(progress_mutex);
+    if (percent <= progress_drawn) return;
+    progress_drawn = percent;
+    constexpr int kWidth = 40;
+    int filled = percent * kWidth / 100;
+    std::fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################", kWidth - filled, "",
+                 percent);
+    std::fflush(stderr);
+  };
+}
+
+void finish_progress_bar() {
+  if (::isatty(STDERR_FILENO) && progress_drawn >= 0) std::fprintf(stderr, "\n");
+}
+
+}  // namespace prism::cli

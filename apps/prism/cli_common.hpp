@@ -1,0 +1,44 @@
+// What the `prism` subcommands share: choosing a backend, timing phases,
+// writing --stats, and the progress bar.
+#pragma once
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "prism/backend.hpp"
+#include "prism/registry.hpp"
+#include "prism/scene.hpp"
+
+namespace prism::cli {
+
+struct BackendChoice {
+  std::string name;
+  std::unique_ptr<Backend> backend;
+};
+
+// Loads and starts the backend named on the command line ("auto": the
+// fastest usable one). Unknown or unloadable: InputError; cannot start: RuntimeError.
+BackendChoice open_backend(Registry& registry, const std::string& name);
+
+class PhaseTimer {
+ public:
+  PhaseTimer() : start_(std::chrono::steady_clock::now()), last_(start_) {}
+  // Milliseconds since the previous lap (or the start).
+  double lap();
+  double total() const;
+
+ private:
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+// Writes the --stats JSON (atomically).
+void write_stats(const std::string& file, const std::string& backend, const Scene& scene, const BackendStats& stats,
+                 const std::map<std::string, double>& ms);
+
+// A progress bar on stderr, drawn only when stderr is a terminal.
+std::function<void(double)> progress_bar();
+void finish_progress_bar();
+
+}  // namespace prism::cli

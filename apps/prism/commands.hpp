@@ -1,0 +1,16 @@
+// The `prism` subcommands. Each registers its flags on the CLI11 app and
+// returns the function that runs it.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace prism::cli {
+
+using Command = std::function<int()>;
+
+Command add_list_command(CLI::App& app);
+Command add_render_command(CLI::App& app);
+Command add_trace_command(CLI::App& app);
+
+}  // namespace prism::cli

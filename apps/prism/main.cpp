@@ -1,0 +1,43 @@
+// prism: list the plugins, render a scene, trace a batch of rays.
+// Exit status: 0 success, 2 bad input (scene, flag, CSV line, unknown
+// backend, plugin that fails to load), 1 failure at run time.
+#include <cstdio>
+#include <map>
+
+#include "commands.hpp"
+#include "prism/errors.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"Prism: Whitted ray tracing of analytic primitives, with interchangeable backends"};
+  app.require_subcommand(1);
+  std::map<CLI::App*, prism::cli::Command> commands;
+  auto add = [&](prism::cli::Command (*adder)(CLI::App&)) {
+    size_t before = app.get_subcommands({}).size();
+    auto command = adder(app);
+    commands[app.get_subcommands({})[before]] = command;
+  };
+  add(prism::cli::add_list_command);
+  add(prism::cli::add_render_command);
+  add(prism::cli::add_trace_command);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return 2;
+  }
+  try {
+    for (auto* sub : app.get_subcommands())
+      if (auto it = commands.find(sub); it != commands.end()) return it->second();
+    return 2;
+  } catch (const prism::InputError& e) {
+    std::fprintf(stderr, "prism: error: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "prism: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,63 @@
+#include "embree_device.hpp"
+
+#include "prism/errors.hpp"
+
+namespace prism::embree {
+
+const char* error_name(RTCError code) {
+  switch (code) {
+    case RTC_ERROR_NONE: return "RTC_ERROR_NONE";
+    case RTC_ERROR_UNKNOWN: return "RTC_ERROR_UNKNOWN";
+    case RTC_ERROR_INVALID_ARGUMENT: return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION: return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_OUT_OF_MEMORY: return "RTC_ERROR_OUT_OF_MEMORY";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "RTC_ERROR_UNSUPPORTED_CPU";
+    case RTC_ERROR_CANCELLED: return "RTC_ERROR_CANCELLED";
+  }
+  return "unknown Embree error";
+}
+
+Device::Device() {
+  // "verbose=0": Embree prints nothing; errors come through on_error.
+  device_ = rtcNewDevice("verbose=0");
+  if (device_ == nullptr) {
+    throw RuntimeError(std::string("Embree: cannot create a device (") +
+                       error_name(rtcGetDeviceError(nullptr)) + ")");
+  }
+  rtcSetDeviceErrorFunction(device_, &Device::on_error, this);
+}
+
+Device::~Device() { rtcReleaseDevice(device_); }
+
+void Device::on_error(void* self, RTCError code, const char* message) {
+  auto* device = static_cast<Device*>(self);
+  std::lock_guard lock(device->mutex_);
+  if (device->error_.empty()) {
+    device->error_ = std::string(error_name(code)) + (message != nullptr ? ": " : "") +
+                     (message != nullptr ? message : "");
+  }
+}
+
+void Device::check(const char* what) {
+  std::string error;
+  {
+    std::lock_guard lock(mutex_);
+    error.swap(error_);
+  }
+  if (!error.empty()) throw RuntimeError(std::string("Embree error during ") + what + ": " + error);
+}
+
+std::string Device::describe() const {
+  const auto property = [this](RTCDeviceProperty p) { return rtcGetDeviceProperty(device_, p); };
+  std::string text = std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MAJOR)) + "." +
+                     std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MINOR)) + "." +
+                     std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_PATCH));
+  switch (property(RTC_DEVICE_PROPERTY_TASKING_SYSTEM)) {
+    case 0: return text + " (tasking: internal)";
+    case 1: return text + " (tasking: TBB)";
+    case 2: return text + " (tasking: PPL)";
+    default: return text;
+  }
+}
+
+}  // namespace prism::embree

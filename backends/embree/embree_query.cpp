@@ -1,0 +1,338 @@
+// Double-precision queries through Embree's float32 BVH.
+//
+// THE FLOAT/DOUBLE SCHEME AND ITS ERROR BOUND
+//
+// Embree sees only float boxes and a float ray; it decides which bounded
+// objects a ray visits. Every visited object is intersected by its plugin in
+// double with the original world ray, and hits are compared in double, so
+// the result equals a brute-force double loop as long as Embree never skips
+// an object whose plugin hit could win. That is what the padding ensures.
+//
+// Frame. Embree coordinates are world - C, C the centre of the union box B
+// of the BVH objects; S = the largest half extent of B; M = the largest
+// |world coordinate| of B. Every object's world box is grown by
+//     pad = 4e-6 * S + 2^-40 * M
+// in double and rounded outward to float.
+//
+// Ray. The ray is clipped (in double) to B grown by 2 * pad: [t0, t1]. Rays
+// that miss it skip Embree. Its origin is moved along the ray to world
+// t = s = max(t0, tmin) (tmin = 0 for occlusion), e = (o - C) + s * d, so
+// e lies in the grown box: |e| <= S + 2 pad per component. Embree gets
+// e_f = fl(e), d_f = fl(d), tnear = 0 and tfar = fl_up(t_limit - s), where
+// t_limit = min(best t so far, t1); a callback that finds a better hit
+// lowers tfar to fl_up(t_best - s) (rounded up: a tie at t_best, which the
+// lower id may still win, stays inside). Embree's tau is world t - s.
+//
+// Bound. With u = 2^-24, |e_f - e| <= u (S + 2 pad) and |d_f - d| <= u per
+// component, and tau never exceeds the diagonal of the grown box,
+// 2 sqrt(3) (S + 2 pad). So at equal tau the float ray is within
+//     delta = (1 + 2 sqrt 3) u (S + 2 pad) < 4.5 u (S + 2 pad) ~= 2.7e-7 S
+// of the double ray, per component. A hit point H = P(tau_h) lies in its
+// object's world box (up to the plugin's and the core's double rounding,
+// which the 2^-40 M term covers with room to spare), so the float ray stays
+// inside the grown float box for tau in [tau_h - r, tau_h + r] with
+// r ~= pad - delta. Embree's slab test (lower * rdir - org * rdir, rdir =
+// 1/d_f) errs by at most ~6 u (S + 2 pad) / |d_i| per slab bound, far below
+// the slab's own margin r / |d_i|. Also 0 <= tau_h <= tfar for every hit
+// that could win (t > tmin and t >= t0 + 2 pad; t <= t_best). Hence every
+// node on the way to such an object is entered and its callback runs,
+// provided pad > delta + 6 u (S + 2 pad), i.e. pad > ~10.6 u S ~= 6.3e-7 S.
+// The 4e-6 S used is about 6x that. The double arithmetic that makes e and
+// t0 errs by ~4 eps (|o| + |C| + |s|); shift_is_exact_enough() sends the
+// rare ray for which that could exceed pad / 64 (an origin some 1e8 S away)
+// to the brute-force loop instead.
+//
+// A few objects far larger than the rest (a ground sphere of radius 1e6
+// beside unit spheres) would make S, and every box's padding, huge; up to
+// kMaxOutliers of them are tested beside the BVH instead.
+
+#include "embree_query.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <type_traits>
+
+#include "prism/errors.hpp"
+#include "prism/geometry.hpp"
+
+namespace prism::embree {
+
+namespace {
+
+constexpr double kRelativePad = 4e-6;  // of S
+constexpr double kAbsolutePad = 0x1p-40;  // of M
+constexpr double kOutlierRatio = 1e3;  // size > 1000 x the median object size
+constexpr size_t kMaxOutliers = 8;
+
+// The per-query state the callbacks read. Embree hands back the address of
+// `rtc`, the first member of this standard-layout struct.
+struct QueryContext {
+  RTCIntersectContext rtc;
+  const Ray* ray = nullptr;  // the double world ray
+  double tmin = 0;           // closest: t > tmin
+  double tmax = 0;           // occluded: 0 < t < tmax
+  double shift = 0;          // Embree's tau = world t - shift
+  Hit best;                  // closest so far (double t, id, plugin data)
+  bool blocked = false;      // occluded: an object blocks the ray
+};
+static_assert(std::is_standard_layout_v<QueryContext>);
+
+QueryContext& context_of(RTCIntersectContext* rtc) { return *reinterpret_cast<QueryContext*>(rtc); }
+
+float float_down(double x) {
+  if (x < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+float float_up(double x) {
+  if (x > std::numeric_limits<float>::max()) return std::numeric_limits<float>::infinity();
+  float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+double half_size(const Box3& box) { return 0.5 * max_abs(box.hi - box.lo); }
+
+bool finite_box(const Box3& box) {
+  for (int a = 0; a < 3; ++a) {
+    if (!std::isfinite(box.lo[a]) || !std::isfinite(box.hi[a]) || box.lo[a] > box.hi[a]) return false;
+  }
+  return true;
+}
+
+// Takes `id`'s hit when it is closer, or as close with a lower id.
+void consider(QueryContext& ctx, const Object& object, int32_t id) {
+  PrismHit hit;
+  if (!intersect_object(object, *ctx.ray, ctx.tmin, ctx.best.t, hit)) return;
+  if (hit.t == ctx.best.t && id > ctx.best.id) return;
+  ctx.best.t = hit.t;
+  ctx.best.id = id;
+  ctx.best.prim = hit;
+}
+
+bool blocks(const QueryContext& ctx, const Object& object) {
+  PrismHit hit;
+  return intersect_object(object, *ctx.ray, 0.0, ctx.tmax, hit) && hit.t < ctx.tmax;
+}
+
+}  // namespace
+
+struct EmbreeQuery::TypeGroup {
+  const Object* objects = nullptr;  // scene.objects.data()
+  const Frame* frame = nullptr;
+  std::vector<int32_t> ids;  // primID -> object id, ascending
+};
+
+namespace {
+
+// The generic callbacks of every user geometry: no per-type code here, the
+// plugin behind each object does the work (style.md #6).
+void bounds_callback(const RTCBoundsFunctionArguments* args) {
+  const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
+  const Box3& box = group.objects[group.ids[args->primID]].world_bounds;
+  const Frame& frame = *group.frame;
+  const glm::dvec3 lo = box.lo - frame.center - frame.pad;
+  const glm::dvec3 hi = box.hi - frame.center + frame.pad;
+  RTCBounds& out = *args->bounds_o;
+  out.lower_x = float_down(lo.x);
+  out.lower_y = float_down(lo.y);
+  out.lower_z = float_down(lo.z);
+  out.upper_x = float_up(hi.x);
+  out.upper_y = float_up(hi.y);
+  out.upper_z = float_up(hi.z);
+}
+
+void intersect_callback(const RTCIntersectFunctionNArguments* args) {
+  QueryContext& ctx = context_of(args->context);
+  const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
+  const int32_t id = group.ids[args->primID];
+  const int32_t before = ctx.best.id;
+  const double before_t = ctx.best.t;
+  consider(ctx, group.objects[id], id);
+  if (ctx.best.id == before && ctx.best.t == before_t) return;
+  // rtcIntersect1 passes one ray (N == 1); every valid lane is that ray.
+  const float tfar = float_up(ctx.best.t - ctx.shift);
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    float& ray_tfar = RTCRayN_tfar(rays, args->N, i);
+    ray_tfar = std::min(ray_tfar, tfar);
+    RTCHitN_geomID(hits, args->N, i) = args->geomID;
+    RTCHitN_primID(hits, args->N, i) = args->primID;
+  }
+}
+
+void occluded_callback(const RTCOccludedFunctionNArguments* args) {
+  QueryContext& ctx = context_of(args->context);
+  const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
+  if (ctx.blocked || !blocks(ctx, group.objects[group.ids[args->primID]])) return;
+  ctx.blocked = true;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != 0) RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
+  }
+}
+
+// The float ray for world t >= shift, up to world t = t_limit (see the top).
+RTCRay float_ray(const Ray& ray, const Frame& frame, double shift, double t_limit) {
+  const glm::dvec3 e = (ray.origin - frame.center) + shift * ray.dir;
+  RTCRay r{};
+  r.org_x = static_cast<float>(e.x);
+  r.org_y = static_cast<float>(e.y);
+  r.org_z = static_cast<float>(e.z);
+  r.tnear = 0.0f;
+  r.dir_x = static_cast<float>(ray.dir.x);
+  r.dir_y = static_cast<float>(ray.dir.y);
+  r.dir_z = static_cast<float>(ray.dir.z);
+  r.time = 0.0f;
+  r.tfar = float_up(t_limit - shift);
+  r.mask = 0xFFFFFFFFu;
+  r.id = 0;
+  r.flags = 0;
+  return r;
+}
+
+}  // namespace
+
+EmbreeQuery::EmbreeQuery(const Scene& scene, Device& device) : scene_(scene) {
+  const auto& objects = scene.objects;
+  std::vector<double> sizes;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const bool in_bvh = objects[i].bounded && finite_box(objects[i].world_bounds);
+    (in_bvh ? bvh_ids_ : brute_ids_).push_back(static_cast<int32_t>(i));
+    if (in_bvh) sizes.push_back(half_size(objects[i].world_bounds));
+  }
+  if (!sizes.empty()) {
+    auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
+    std::nth_element(sizes.begin(), middle, sizes.end());
+    const double limit = kOutlierRatio * *middle;
+    std::vector<int32_t> outliers;
+    for (int32_t id : bvh_ids_) {
+      if (half_size(objects[id].world_bounds) > limit) outliers.push_back(id);
+    }
+    if (!outliers.empty() && outliers.size() <= kMaxOutliers) {
+      std::erase_if(bvh_ids_, [&](int32_t id) { return std::ranges::binary_search(outliers, id); });
+      brute_ids_.insert(brute_ids_.end(), outliers.begin(), outliers.end());
+      std::ranges::sort(brute_ids_);
+    }
+  }
+  if (!bvh_ids_.empty()) build(device);
+}
+
+EmbreeQuery::~EmbreeQuery() = default;
+
+void EmbreeQuery::build(Device& device) {
+  const auto& objects = scene_.objects;
+  Box3 all{glm::dvec3(std::numeric_limits<double>::infinity()),
+           glm::dvec3(-std::numeric_limits<double>::infinity())};
+  for (int32_t id : bvh_ids_) {
+    all.lo = glm::min(all.lo, objects[id].world_bounds.lo);
+    all.hi = glm::max(all.hi, objects[id].world_bounds.hi);
+  }
+  frame_.center = 0.5 * (all.lo + all.hi);
+  frame_.half = all.hi - frame_.center;
+  frame_.pad = kRelativePad * max_abs(frame_.half) + kAbsolutePad * std::max(max_abs(all.lo), max_abs(all.hi));
+
+  // One user geometry per primitive type present, in order of first use.
+  for (int32_t id : bvh_ids_) {
+    auto same_type = [&](const auto& group) { return group->objects[group->ids[0]].desc == objects[id].desc; };
+    auto it = std::ranges::find_if(groups_, same_type);
+    if (it == groups_.end()) {
+      groups_.push_back(std::make_unique<TypeGroup>(TypeGroup{objects.data(), &frame_, {}}));
+      it = groups_.end() - 1;
+    }
+    (*it)->ids.push_back(id);
+  }
+
+  rtc_.reset(rtcNewScene(device.get()));
+  device.check("scene creation");
+  rtcSetSceneBuildQuality(rtc_.get(), RTC_BUILD_QUALITY_HIGH);
+  for (auto& group : groups_) {
+    RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
+    device.check("geometry creation");
+    rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(group->ids.size()));
+    rtcSetGeometryUserData(geometry, group.get());
+    rtcSetGeometryBoundsFunction(geometry, &bounds_callback, nullptr);
+    rtcSetGeometryIntersectFunction(geometry, &intersect_callback);
+    rtcSetGeometryOccludedFunction(geometry, &occluded_callback);
+    rtcCommitGeometry(geometry);
+    rtcAttachGeometry(rtc_.get(), geometry);
+    rtcReleaseGeometry(geometry);  // the scene holds it now
+    device.check("geometry setup");
+  }
+  rtcCommitScene(rtc_.get());
+  device.check("BVH build");
+}
+
+bool EmbreeQuery::clip(const Ray& ray, double& t0, double& t1) const {
+  t0 = -std::numeric_limits<double>::infinity();
+  t1 = std::numeric_limits<double>::infinity();
+  const glm::dvec3 o = ray.origin - frame_.center;
+  for (int a = 0; a < 3; ++a) {
+    const double b = frame_.half[a] + 2.0 * frame_.pad;
+    if (ray.dir[a] == 0.0) {
+      if (!(std::abs(o[a]) <= b)) return false;
+      continue;
+    }
+    const double inv = 1.0 / ray.dir[a];
+    double near = (-b - o[a]) * inv;
+    double far = (b - o[a]) * inv;
+    if (near > far) std::swap(near, far);
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+  }
+  return t0 <= t1;  // false for NaN too
+}
+
+bool EmbreeQuery::shift_is_exact_enough(const Ray& ray, double shift) const {
+  const double magnitude = max_abs(ray.origin) + max_abs(frame_.center) + std::abs(shift);
+  return magnitude * 0x1p-44 <= frame_.pad;
+}
+
+Hit EmbreeQuery::closest(const Ray& ray, double tmin) const {
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = &ray;
+  ctx.tmin = tmin;
+  for (int32_t id : brute_ids_) consider(ctx, scene_.objects[id], id);
+  double t0 = 0;
+  double t1 = 0;
+  if (!rtc_ || !clip(ray, t0, t1) || !(t1 > tmin) || t0 > ctx.best.t) return ctx.best;
+  ctx.shift = std::max(t0, tmin);
+  if (!shift_is_exact_enough(ray, ctx.shift)) {
+    for (int32_t id : bvh_ids_) consider(ctx, scene_.objects[id], id);
+    return ctx.best;
+  }
+  RTCRayHit rayhit{};
+  rayhit.ray = float_ray(ray, frame_, ctx.shift, std::min(ctx.best.t, t1));
+  rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(rtc_.get(), &ctx.rtc, &rayhit);
+  return ctx.best;
+}
+
+bool EmbreeQuery::occluded(const Ray& ray, double tmax) const {
+  if (!(tmax > 0.0)) return false;
+  QueryContext ctx;
+  rtcInitIntersectContext(&ctx.rtc);
+  ctx.ray = &ray;
+  ctx.tmax = tmax;
+  for (int32_t id : brute_ids_) {
+    if (blocks(ctx, scene_.objects[id])) return true;
+  }
+  double t0 = 0;
+  double t1 = 0;
+  if (!rtc_ || !clip(ray, t0, t1) || !(t1 > 0.0) || !(t0 < tmax)) return false;
+  ctx.shift = std::max(t0, 0.0);
+  if (!shift_is_exact_enough(ray, ctx.shift)) {
+    return std::ranges::any_of(bvh_ids_, [&](int32_t id) { return blocks(ctx, scene_.objects[id]); });
+  }
+  RTCRay float_shadow_ray = float_ray(ray, frame_, ctx.shift, std::min(tmax, t1));
+  rtcOccluded1(rtc_.get(), &ctx.rtc, &float_shadow_ray);
+  return ctx.blocked;
+}
+
+}  // namespace prism::embree

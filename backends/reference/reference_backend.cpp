@@ -1,0 +1,77 @@
+// The reference backend: the ground truth every other backend is judged
+// against. Scalar, double precision, brute force over every object in id
+// order (no acceleration structure to get wrong), the core's shading.
+#include <chrono>
+#include <cstdio>
+
+#include "prism/cpu_render.hpp"
+#include "prism/primitive_abi.h"
+
+namespace prism {
+namespace {
+
+class BruteForceQuery : public ObjectQuery {
+ public:
+  explicit BruteForceQuery(const Scene& scene) : scene_(scene) {}
+
+  Hit closest(const Ray& ray, double tmin) const override {
+    Hit best;
+    for (size_t id = 0; id < scene_.objects.size(); ++id) {
+      PrismHit hit;
+      // Visiting ids in order and asking for t strictly below the best keeps the lower id on ties.
+      double tmax = best.found() ? std::nextafter(best.t, 0.0) : kInfinity;
+      if (intersect_object(scene_.objects[id], ray, tmin, tmax, hit) && hit.t < best.t) {
+        best.t = hit.t;
+        best.id = static_cast<int32_t>(id);
+        best.prim = hit;
+      }
+    }
+    return best;
+  }
+
+  bool occluded(const Ray& ray, double tmax) const override {
+    for (const Object& object : scene_.objects) {
+      PrismHit hit;
+      if (intersect_object(object, ray, 0.0, std::nextafter(tmax, 0.0), hit)) return true;
+    }
+    return false;
+  }
+
+ private:
+  const Scene& scene_;
+};
+
+class ReferenceBackend : public Backend {
+ public:
+  void prepare(const Scene& scene) override {
+    scene_ = &scene;
+    query_ = std::make_unique<BruteForceQuery>(scene);
+    stats_.ms["build"] = 0.0;  // nothing to build: that is the point of this backend
+  }
+  Image render(const RenderSettings& settings) override { return render_cpu(*scene_, *query_, settings, stats_); }
+  std::vector<TraceResult> trace(std::span<const TraceQuery> rays) override {
+    return trace_cpu(*scene_, *query_, rays, stats_);
+  }
+  BackendStats stats() const override { return stats_; }
+
+ private:
+  const Scene* scene_ = nullptr;
+  std::unique_ptr<BruteForceQuery> query_;
+  BackendStats stats_;
+};
+
+void probe(PrismBackendProbe* out) {
+  out->usable = 1;
+  std::snprintf(out->reason, sizeof out->reason, "CPU, double precision, brute force");
+}
+
+Backend* create() { return new ReferenceBackend(); }
+
+}  // namespace
+}  // namespace prism
+
+extern "C" PRISM_EXPORT const PrismBackendDesc* prism_backend_entry(void) {
+  static const PrismBackendDesc desc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "reference", "1.0.0", 10,
+                                        prism::probe, prism::create};
+  return &desc;
+}

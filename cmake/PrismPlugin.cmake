@@ -1,0 +1,34 @@
+# Declaring plugins. A primitive plugin is one folder under plugins/ that calls
+#   prism_add_primitive_plugin(<type> SOURCES ... [TESTS ...])
+# and builds libprism_primitive_<type>.so into the plugin folder. Its tests link
+# the same sources directly (an object library), so they exercise exactly the
+# code the shared object exports.
+
+function(prism_add_primitive_plugin type)
+  cmake_parse_arguments(ARG "" "" "SOURCES;TESTS" ${ARGN})
+  set(objects prism_primitive_${type}_objects)
+  add_library(${objects} OBJECT ${ARG_SOURCES})
+  target_link_libraries(${objects} PUBLIC prism_sdk)
+  add_library(prism_primitive_${type} MODULE $<TARGET_OBJECTS:${objects}>)
+  target_link_libraries(prism_primitive_${type} PRIVATE prism_sdk)
+  set_target_properties(prism_primitive_${type} PROPERTIES
+    PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY ${PRISM_PLUGIN_OUTPUT_DIR})
+  install(TARGETS prism_primitive_${type} LIBRARY DESTINATION lib/prism)
+  if(PRISM_BUILD_TESTS AND ARG_TESTS)
+    set(test prism_primitive_${type}_test)
+    add_executable(${test} ${ARG_TESTS} $<TARGET_OBJECTS:${objects}>)
+    target_link_libraries(${test} PRIVATE prism_sdk prism_test_support GTest::gtest_main)
+    gtest_discover_tests(${test} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "unit;primitive")
+  endif()
+endfunction()
+
+# A backend is one folder under backends/ calling
+#   prism_add_backend(<name> SOURCES ... [LIBS ...])
+function(prism_add_backend name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;LIBS" ${ARGN})
+  add_library(prism_backend_${name} MODULE ${ARG_SOURCES})
+  target_link_libraries(prism_backend_${name} PRIVATE prism_core ${ARG_LIBS})
+  set_target_properties(prism_backend_${name} PROPERTIES
+    PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY ${PRISM_PLUGIN_OUTPUT_DIR})
+  install(TARGETS prism_backend_${name} LIBRARY DESTINATION lib/prism)
+endfunction()

@@ -1,0 +1,33 @@
+// The CPU rendering path shared by the reference and Embree backends: they
+// supply only the closest-hit and occlusion queries over the scene's objects;
+// camera, sampling, light spheres and the whole of the spec's shading live
+// here, once.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "prism/backend.hpp"
+#include "prism/geometry.hpp"
+
+namespace prism {
+
+class ObjectQuery {
+ public:
+  virtual ~ObjectQuery() = default;
+  // Closest object hit with t > tmin (ties: lower object id). Light spheres excluded.
+  virtual Hit closest(const Ray& ray, double tmin) const = 0;
+  // True when any object is hit with 0 < t < tmax.
+  virtual bool occluded(const Ray& ray, double tmax) const = 0;
+};
+
+// Renders the whole image, tiles in parallel (TBB) unless `parallel` is false.
+// The result does not depend on the thread count.
+Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSettings& settings,
+                 BackendStats& stats, bool parallel = true);
+
+// `prism trace` semantics: closest hit with t > tmin, light spheres included.
+std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
+                                   std::span<const TraceQuery> rays, BackendStats& stats);
+
+}  // namespace prism

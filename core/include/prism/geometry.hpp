@@ -1,0 +1,50 @@
+// World-space rays and hits, and the per-object transform into a plugin's
+// local frame. Shared by every CPU backend.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+
+#include <glm/glm.hpp>
+
+#include "prism/scene.hpp"
+
+namespace prism {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Ray {
+  glm::dvec3 origin{0};
+  glm::dvec3 dir{0, 0, 1};  // unit length
+};
+
+// Id of light k's visible sphere, as the spec numbers it.
+constexpr int32_t light_sphere_id(int k) { return -2 - k; }
+constexpr int32_t kMissId = -1;
+
+struct Hit {
+  double t = kInfinity;
+  int32_t id = kMissId;  // object id, light_sphere_id(k), or kMissId
+  PrismHit prim{};       // plugin data for Object::surface (objects only)
+  bool found() const { return id != kMissId; }
+};
+
+struct SurfacePoint {
+  glm::dvec3 position{0};  // world P
+  glm::dvec3 normal{0};    // world outward unit N (-dir where undefined)
+  glm::dvec2 uv{0};
+};
+
+// Ray in the object's local frame (t is preserved: rotations are orthonormal).
+PrismRay to_local(const Object& object, const Ray& ray);
+
+// Closest hit on one object with tmin < t <= tmax.
+bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit);
+
+// World-space point, outward normal and uv of a hit found by intersect_object.
+SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit);
+
+// Closest light sphere with tmin < t <= tmax (ties: lower light index).
+Hit intersect_light_spheres(const Scene& scene, const Ray& ray, double tmin, double tmax);
+
+}  // namespace prism

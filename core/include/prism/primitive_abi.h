@@ -1,0 +1,121 @@
+/* Prism primitive-plugin ABI.
+ *
+ * A primitive plugin is a shared object exporting one C function,
+ * `prism_primitive_entry`, that returns a pointer to a static descriptor
+ * table. The loader reads `abi_version` (always the first member) before it
+ * touches anything else and refuses a table whose version differs.
+ *
+ * The plugin describes its JSON fields declaratively; the core parses and
+ * range-checks them (so every type gets the same JSON-path error messages)
+ * and hands the plugin a flat array of doubles, field after field. The
+ * plugin packs those into its parameter record (std430-compatible, doubles),
+ * which every backend stores and passes back unchanged.
+ *
+ * Intersection works in the object's local frame: for a plugin with
+ * PRISM_PRIMITIVE_TRANSFORMABLE the core moves the ray by `center` and
+ * `rotation` before calling it (rotations keep `t`). Hit first, shading
+ * later: `intersect` returns `t` plus whatever the plugin needs, and
+ * `surface` computes point, normal and uv for the winning hit only.
+ */
+#ifndef PRISM_PRIMITIVE_ABI_H
+#define PRISM_PRIMITIVE_ABI_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PRISM_PRIMITIVE_ABI_VERSION 1u
+#define PRISM_PRIMITIVE_ENTRY_SYMBOL "prism_primitive_entry"
+#define PRISM_EXPORT __attribute__((visibility("default")))
+
+/* Kinds of field value. */
+typedef enum PrismFieldKind {
+  PRISM_FIELD_NUMBER = 0,        /* one JSON number */
+  PRISM_FIELD_ARRAY = 1,         /* exactly `count` JSON numbers */
+  PRISM_FIELD_ARRAY_OR_NULL = 2  /* `count` entries, each a number or null (null reads as `null_value`) */
+} PrismFieldKind;
+
+/* Field flags. */
+#define PRISM_FIELD_REQUIRED 1u      /* no default; missing is an error */
+#define PRISM_FIELD_MIN_EXCLUSIVE 2u /* each entry must be > min (else >= min) */
+#define PRISM_FIELD_NONZERO 4u       /* an array that must not be all zeros */
+#define PRISM_FIELD_LENGTH 8u        /* a length or coordinate: |entry| <= 1e7 */
+
+typedef struct PrismField {
+  const char* name;
+  uint32_t kind;           /* PrismFieldKind */
+  uint32_t count;          /* entries; 1 for PRISM_FIELD_NUMBER */
+  uint32_t flags;
+  double min;              /* per entry; -INFINITY for none */
+  double max;              /* per entry; +INFINITY for none */
+  double null_value;       /* what null reads as (ARRAY_OR_NULL) */
+  const double* defaults;  /* `count` entries, NULL when required */
+  const char* doc;         /* one line for `prism plugin check` and docs */
+} PrismField;
+
+/* Descriptor flags. */
+#define PRISM_PRIMITIVE_TRANSFORMABLE 1u /* accepts `center` and `rotation` */
+
+typedef struct PrismRay {
+  double origin[3];
+  double dir[3]; /* unit length */
+} PrismRay;
+
+typedef struct PrismHit {
+  double t;
+  double data[3]; /* plugin-private, read back by `surface` */
+  uint32_t part;  /* plugin-private (a face, a root index...) */
+  uint32_t reserved;
+} PrismHit;
+
+typedef struct PrismSurface {
+  double point[3];  /* hit point in the local frame, re-projected onto the surface */
+  double normal[3]; /* outward normal, local frame, any length; all zero where undefined */
+  double uv[2];
+} PrismSurface;
+
+typedef struct PrismError {
+  char field[64];    /* the offending field's name, "" for the object as a whole */
+  char message[192]; /* e.g. "must be < major_radius (1), got 2" */
+} PrismError;
+
+typedef struct PrismPrimitiveDesc {
+  uint32_t abi_version; /* PRISM_PRIMITIVE_ABI_VERSION; must stay the first member */
+  uint32_t desc_size;   /* sizeof(PrismPrimitiveDesc) as the plugin was built */
+  const char* type_name;      /* the JSON `type`, e.g. "torus" */
+  const char* plugin_version; /* e.g. "1.0.0" */
+  uint32_t flags;             /* PRISM_PRIMITIVE_* */
+  uint32_t field_count;
+  const PrismField* fields;
+  uint32_t record_size; /* bytes of the packed parameter record, a multiple of 16 */
+  uint32_t reserved;
+
+  /* Cross-field checks after the per-field ones; 0 = valid, else fill `err`. */
+  int (*validate)(const double* values, PrismError* err);
+  /* Pack checked values into the parameter record (record_size bytes, 16-aligned). */
+  void (*pack)(const double* values, void* record);
+  /* Local-frame bounding box; returns 0 when the primitive is unbounded. */
+  int (*bounds)(const void* record, double lo[3], double hi[3]);
+  /* Closest hit with tmin < t <= tmax; returns 1 and fills `hit`, else 0. */
+  int (*intersect)(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit);
+  /* The same query for `count` rays; found[i] is 1 where hits[i] is valid. */
+  void (*intersect_batch)(const void* record, size_t count, const PrismRay* rays, const double* tmin,
+                          const double* tmax, PrismHit* hits, uint8_t* found);
+  /* Point, outward normal and uv of a hit returned by `intersect` for `ray`. */
+  void (*surface)(const void* record, const PrismRay* ray, const PrismHit* hit, PrismSurface* out);
+
+  /* GPU slots, filled once a GPU backend consumes them; NULL until then. */
+  const char* glsl_source; /* defines <glsl_prefix>_intersect and <glsl_prefix>_surface */
+  const char* glsl_prefix;
+} PrismPrimitiveDesc;
+
+typedef const PrismPrimitiveDesc* (*PrismPrimitiveEntryFn)(void);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* PRISM_PRIMITIVE_ABI_H */

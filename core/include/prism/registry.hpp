@@ -1,0 +1,105 @@
+// Finds and loads plugins at run time: primitive plugins
+// (libprism_primitive_<type>.so) and backends (libprism_backend_<name>.so),
+// from the folders in PRISM_PLUGIN_PATH (':'-separated) and then the
+// install-relative default, <folder of the executable>/../lib/prism.
+// Every failure is reported with its reason; a bad plugin never crashes the
+// process and never hides the good ones.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "prism/backend.hpp"
+#include "prism/primitive_abi.h"
+
+namespace prism {
+
+// A dlopen'ed shared object; closes it when the last user lets go.
+class SharedLibrary {
+ public:
+  static std::shared_ptr<SharedLibrary> open(const std::filesystem::path& path, std::string& error);
+  ~SharedLibrary();
+  void* symbol(const char* name) const;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  SharedLibrary(std::filesystem::path path, void* handle) : path_(std::move(path)), handle_(handle) {}
+  std::filesystem::path path_;
+  void* handle_;
+};
+
+class PrimitivePlugin {
+ public:
+  PrimitivePlugin(std::shared_ptr<SharedLibrary> library, const PrismPrimitiveDesc* desc)
+      : library_(std::move(library)), desc_(desc) {}
+  const PrismPrimitiveDesc& desc() const { return *desc_; }
+  std::string name() const { return desc_->type_name; }
+  const std::filesystem::path& path() const { return library_->path(); }
+
+ private:
+  std::shared_ptr<SharedLibrary> library_;
+  const PrismPrimitiveDesc* desc_;
+};
+
+class BackendPlugin {
+ public:
+  BackendPlugin(std::shared_ptr<SharedLibrary> library, const PrismBackendDesc* desc)
+      : library_(std::move(library)), desc_(desc) {}
+  const PrismBackendDesc& desc() const { return *desc_; }
+  std::string name() const { return desc_->name; }
+  PrismBackendProbe probe() const;
+  std::unique_ptr<Backend> create() const;
+
+ private:
+  std::shared_ptr<SharedLibrary> library_;
+  const PrismBackendDesc* desc_;
+};
+
+// What was found in one plugin file, loaded or not.
+struct PluginReport {
+  std::string kind;  // "primitive" or "backend"
+  std::string name;  // from the file name
+  std::filesystem::path path;
+  std::string version;  // when loaded
+  std::string error;    // empty when it loaded
+  bool usable = false;  // backends: the probe says it can run here
+  std::string detail;   // backends: the probe's description or reason
+};
+
+class Registry {
+ public:
+  // Search folders: PRISM_PLUGIN_PATH entries, then the install-relative default.
+  static std::vector<std::filesystem::path> default_search_path();
+  explicit Registry(std::vector<std::filesystem::path> search_path = default_search_path());
+
+  const std::vector<std::filesystem::path>& search_path() const { return search_path_; }
+
+  // Loads (once) the primitive plugin for `type`; throws InputError naming what
+  // was found and why it failed.
+  std::shared_ptr<const PrimitivePlugin> primitive(const std::string& type);
+  std::shared_ptr<const BackendPlugin> backend(const std::string& name);
+
+  // Every plugin file in the search path, each loaded to report on it.
+  std::vector<PluginReport> scan_all();
+  std::vector<std::string> primitive_types_found() const;
+  std::vector<std::string> backend_names_found() const;
+
+ private:
+  std::vector<std::filesystem::path> candidates(const std::string& kind, const std::string& name) const;
+  std::vector<std::string> names_found(const std::string& kind) const;
+  std::vector<std::filesystem::path> search_path_;
+  std::map<std::string, std::shared_ptr<const PrimitivePlugin>> primitives_;
+  std::map<std::string, std::shared_ptr<const BackendPlugin>> backends_;
+};
+
+// Loads one plugin file; nullptr with `error` set when it is not a usable plugin.
+std::shared_ptr<const PrimitivePlugin> load_primitive_plugin(const std::filesystem::path& path,
+                                                              std::string& error);
+std::shared_ptr<const BackendPlugin> load_backend_plugin(const std::filesystem::path& path,
+                                                          std::string& error);
+
+}  // namespace prism

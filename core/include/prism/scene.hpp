@@ -1,0 +1,114 @@
+// The scene model: what a validated scene file turns into. Backends read it;
+// only the loader (scene_loader.hpp) and the public API build it.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "prism/primitive_abi.h"
+
+namespace prism {
+
+class PrimitivePlugin;  // registry.hpp
+
+// Linear RGBA float texels, row 0 = top row of the file.
+struct Texture {
+  std::string name;
+  std::filesystem::path path;
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;  // width * height
+};
+
+struct Material {
+  std::string name;
+  glm::dvec3 color{0.8, 0.8, 0.8};
+  int texture = -1;  // index into Scene::textures
+  glm::dvec2 uv_scale{1, 1};
+  glm::dvec2 uv_offset{0, 0};
+  double diffuse = 1.0;
+  double specular = 0.0;
+  double shininess = 32.0;
+  double reflect = 0.0;
+  double ior = 0.0;  // 0: opaque
+  glm::dvec3 absorb{0, 0, 0};
+  bool dielectric() const { return ior >= 1.0; }
+};
+
+struct Light {
+  enum class Type { Point, Directional };
+  Type type = Type::Point;
+  glm::dvec3 position{0, 0, 0};   // point
+  glm::dvec3 direction{0, -1, 0}; // directional, unit length (as given, normalized)
+  glm::dvec3 color{1, 1, 1};
+  double intensity = 1.0;
+  double linear = 0.0;
+  double quadratic = 0.0;
+  double radius = 0.0;  // > 0: a visible sphere
+  bool visible_sphere() const { return type == Type::Point && radius > 0.0; }
+};
+
+struct Box3 {
+  glm::dvec3 lo{0}, hi{0};
+};
+
+// One object: a primitive plugin, its packed parameter record, and its frame.
+struct Object {
+  const PrimitivePlugin* plugin = nullptr;
+  const PrismPrimitiveDesc* desc = nullptr;  // plugin->desc(), cached
+  int material = 0;                          // index into Scene::materials
+  glm::dvec3 center{0, 0, 0};
+  glm::dmat3 rotation{1.0};  // local -> world
+  bool has_rotation = false; // false: rotation is identity, skip the multiply
+  std::vector<std::byte> record_storage;  // record_size bytes, 16-aligned start
+  bool bounded = false;
+  Box3 world_bounds;  // valid when bounded
+
+  const void* record() const;
+};
+
+struct Camera {
+  glm::dvec3 position{0, 0, 0};
+  glm::dvec3 forward{0, 0, -1};
+  glm::dvec3 right{1, 0, 0};
+  glm::dvec3 up{0, 1, 0};  // true_up
+  double fov_y = 60.0;     // degrees
+};
+
+struct ImageSettings {
+  int width = 640;
+  int height = 360;
+  int spp = 1;
+  int max_depth = 5;
+};
+
+struct Background {
+  glm::dvec3 color{0, 0, 0};
+  std::array<int, 6> cubemap{-1, -1, -1, -1, -1, -1};  // +x -x +y -y +z -z texture indices
+  bool has_cubemap() const { return cubemap[0] >= 0; }
+};
+
+struct Scene {
+  std::filesystem::path source;  // the scene file, for messages
+  Camera camera;
+  ImageSettings image;
+  Background background;
+  glm::dvec3 ambient{0, 0, 0};
+  glm::dvec3 shadow_ambient{0, 0, 0};
+  std::vector<Texture> textures;
+  std::vector<Material> materials;  // index 0 is the default material
+  std::vector<Light> lights;
+  std::vector<Object> objects;
+  // The primitive plugins this scene uses (kept alive while the scene lives).
+  std::vector<std::shared_ptr<const PrimitivePlugin>> plugins;
+
+  std::vector<std::string> plugin_names() const;
+};
+
+}  // namespace prism

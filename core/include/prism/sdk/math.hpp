@@ -1,0 +1,107 @@
+// Numeric building blocks shared by the primitive plugins (and the core).
+//
+// Everything here is double precision and free of absolute epsilons: the
+// only exact-zero tests are the ones the spec asks for (a quadratic whose t^2
+// coefficient is exactly 0 is linear). See shared/notes/numerics.md for why
+// each form was chosen.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/glm.hpp>
+
+namespace prism::sdk {
+
+inline constexpr double kPi = 3.14159265358979323846;
+inline constexpr double kInf = std::numeric_limits<double>::infinity();
+inline constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// The spec's clamped domains: asin/acos/sqrt never see an argument that
+// rounding pushed just outside their domain.
+inline double safe_sqrt(double x) { return std::sqrt(std::max(x, 0.0)); }
+inline double safe_asin(double x) { return std::asin(std::clamp(x, -1.0, 1.0)); }
+inline double safe_acos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); }
+
+// std::atan2 already returns 0 for atan2(0, 0) (and +-0/+-pi for signed
+// zeros); named so that call sites read as the spec does.
+inline double atan2_spec(double y, double x) { return std::atan2(y, x); }
+
+// The spec's azimuth texture coordinate: 0.5 + atan2(y, x) / 2pi, in [0, 1].
+inline double turn_fraction(double y, double x) { return 0.5 + std::atan2(y, x) / (2.0 * kPi); }
+
+// a*b - c*d with one rounding (Kahan's algorithm via fma): keeps b^2 - 4ac
+// meaningful for near-tangent rays where the two products nearly cancel.
+inline double difference_of_products(double a, double b, double c, double d) {
+  double cd = c * d;
+  double err = std::fma(-c, d, cd);
+  double dop = std::fma(a, b, -cd);
+  return dop + err;
+}
+
+// Real roots of a t^2 + b t + c = 0 in ascending order; returns how many
+// (0, 1 or 2; a double root is reported twice). Uses the cancellation-free
+// pair t = c/q, t = q/a with q = -(b + sign(b) sqrt(disc))/2. a == 0 exactly
+// makes the equation linear; b == 0 then leaves no isolated root.
+inline int solve_quadratic(double a, double b, double c, double& t0, double& t1) {
+  if (a == 0.0) {
+    if (b == 0.0) return 0;
+    t0 = t1 = -c / b;
+    return 1;
+  }
+  double disc = difference_of_products(b, b, 4.0 * a, c);
+  if (!(disc >= 0.0)) return 0;  // also rejects NaN
+  double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
+  if (q == 0.0) {  // b == 0 and disc == 0, hence c == 0: double root at 0
+    t0 = t1 = 0.0;
+    return 2;
+  }
+  t0 = c / q;
+  t1 = q / a;
+  if (t0 > t1) std::swap(t0, t1);
+  return 2;
+}
+
+// Safeguarded Newton-bisection for a root of fn in [a, b], where fn changes
+// sign between a and b: `a_positive` says which side a is on (fn(a) > 0).
+// fn(s, f, df) fills the value and the derivative. Newton steps that leave
+// the current bracket (or a NaN derivative) fall back to bisection, so the
+// result always stays inside [a, b]. Stops when the step is below `tol`.
+template <class Fn>
+double solve_bracketed(const Fn& fn, double a, double b, bool a_positive, double tol) {
+  double lo = a, hi = b;  // lo: the a_positive side, hi: the other
+  double s = 0.5 * (a + b);
+  for (int i = 0; i < 128; ++i) {
+    double f = 0.0, df = 0.0;
+    fn(s, f, df);
+    if (f == 0.0) return s;
+    ((f > 0.0) == a_positive ? lo : hi) = s;
+    double mn = std::min(lo, hi), mx = std::max(lo, hi);
+    double next = s - f / df;
+    if (!(next > mn && next < mx)) next = 0.5 * (lo + hi);
+    if (std::abs(next - s) <= tol || next == mn || next == mx) return next;
+    s = next;
+  }
+  return s;
+}
+
+// Unit vector along v without underflow or overflow of |v|^2: scaling by the
+// largest component first makes (1e-300, 0, 0) and (1e300, 1e300, 0) work.
+inline glm::dvec3 safe_normalize(const glm::dvec3& v) {
+  double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+  if (!(m > 0.0) || !std::isfinite(m)) return glm::dvec3(0.0);
+  glm::dvec3 w = v / m;
+  return w / std::sqrt(glm::dot(w, w));
+}
+
+inline double max_abs_component(const glm::dvec3& v) {
+  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
+
+// Parameter of the foot of the perpendicular from the local origin to the
+// ray (d unit). Moving a far ray origin there before solving keeps every
+// coefficient of order the object's size (Wald, Ray Tracing Gems II ch. 34).
+inline double foot_parameter(const glm::dvec3& o, const glm::dvec3& d) { return -glm::dot(o, d); }
+
+}  // namespace prism::sdk

@@ -1,0 +1,89 @@
+// Conveniences for writing a primitive plugin against prism/primitive_abi.h:
+// glm <-> double[3] copies, typed record access, field-table shorthands,
+// PrismError filling, and an intersect_batch built from intersect.
+#pragma once
+
+#include <charconv>
+#include <cstdarg>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+
+#include <glm/glm.hpp>
+
+#include "prism/primitive_abi.h"
+#include "prism/sdk/math.hpp"
+
+namespace prism::sdk {
+
+inline glm::dvec3 load3(const double v[3]) { return {v[0], v[1], v[2]}; }
+
+inline void store3(const glm::dvec3& v, double out[3]) {
+  out[0] = v.x;
+  out[1] = v.y;
+  out[2] = v.z;
+}
+
+// The record the core hands back is the one `pack` wrote (16-byte aligned).
+template <class Record>
+const Record& record_of(const void* record) {
+  return *static_cast<const Record*>(record);
+}
+
+// A number as the shortest text that reads back to the same double
+// ("1", "0.1", "1e+07"), for error messages.
+struct NumberText {
+  char text[32];
+};
+inline NumberText format_number(double x) {
+  NumberText out{};
+  auto result = std::to_chars(out.text, out.text + sizeof(out.text) - 1, x);
+  *result.ptr = '\0';
+  return out;
+}
+
+// Fills `err` (field name and printf-style message) and returns 1, the
+// value `validate` reports a failure with.
+__attribute__((format(printf, 3, 4))) inline int fail(PrismError* err, const char* field, const char* format, ...) {
+  std::snprintf(err->field, sizeof(err->field), "%s", field);
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(err->message, sizeof(err->message), format, args);
+  va_end(args);
+  return 1;
+}
+
+// A required length (or `count` of them), each > 0 and |x| <= 1e7.
+constexpr PrismField positive_length(const char* name, uint32_t count, const char* doc) {
+  return PrismField{name,
+                    count == 1 ? uint32_t{PRISM_FIELD_NUMBER} : uint32_t{PRISM_FIELD_ARRAY},
+                    count,
+                    PRISM_FIELD_REQUIRED | PRISM_FIELD_MIN_EXCLUSIVE | PRISM_FIELD_LENGTH,
+                    0.0,
+                    kInf,
+                    0.0,
+                    nullptr,
+                    doc};
+}
+
+// For plugins without cross-field rules.
+inline int validate_nothing(const double*, PrismError*) { return 0; }
+
+using IntersectFn = int (*)(const void*, const PrismRay*, double, double, PrismHit*);
+
+// intersect_batch for plugins whose batch is just a loop over `intersect`.
+template <IntersectFn Intersect>
+void intersect_batch(const void* record, size_t count, const PrismRay* rays, const double* tmin,
+                     const double* tmax, PrismHit* hits, uint8_t* found) {
+  for (size_t i = 0; i < count; ++i) found[i] = Intersect(record, &rays[i], tmin[i], tmax[i], &hits[i]) ? 1 : 0;
+}
+
+// Fills a PrismSurface from local point, normal and uv.
+inline void write_surface(PrismSurface* out, const glm::dvec3& point, const glm::dvec3& normal, double u, double v) {
+  store3(point, out->point);
+  store3(normal, out->normal);
+  out->uv[0] = u;
+  out->uv[1] = v;
+}
+
+}  // namespace prism::sdk

@@ -1,0 +1,26 @@
+// Texture decoding and sampling exactly as the scene format fixes it.
+#pragma once
+
+#include <filesystem>
+
+#include <glm/glm.hpp>
+
+#include "prism/scene.hpp"
+
+namespace prism {
+
+// Decodes PNG/JPG/EXR to linear RGBA float (sRGB curve on 8/16-bit colour
+// unless `srgb` is false, unassociated alpha). Throws InputError.
+Texture load_texture(const std::filesystem::path& path, bool srgb);
+
+// Bilinear, repeat wrap; v = 0 is the top row.
+glm::dvec4 sample_texture(const Texture& texture, glm::dvec2 uv);
+
+// Background radiance for a miss along `dir` (colour or cube map).
+glm::dvec3 background_radiance(const Scene& scene, const glm::dvec3& dir);
+
+// IEC 61966-2-1 transfer functions.
+double srgb_to_linear(double encoded);
+double linear_to_srgb(double linear);
+
+}  // namespace prism

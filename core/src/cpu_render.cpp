@@ -1,0 +1,128 @@
+#include "prism/cpu_render.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <mutex>
+
+#include "prism/camera.hpp"
+#include "shading.hpp"
+
+namespace prism {
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+struct Frame {
+  const Scene& scene;
+  const ObjectQuery& query;
+  const RenderSettings& settings;
+  Image& image;
+};
+
+// One pixel: the mean of its samples, summed in sample order (so the result
+// never depends on threads), plus the AOVs of sample 0.
+void render_pixel(const Frame& f, Shader& shader, int i, int j) {
+  const ImageSettings& s = f.settings.image;
+  glm::dvec3 sum(0.0);
+  for (int k = 0; k < s.spp; ++k) {
+    Ray ray = camera_ray(f.scene.camera, s.width, s.height, i, j, sample_offset(k));
+    SampleResult r = shader.trace_sample(ray, s.max_depth, k == 0 && f.settings.aov_path);
+    sum += r.radiance;
+    if (k == 0) {
+      size_t p = size_t(j) * s.width + i;
+      if (f.settings.aov_id) f.image.id[p] = static_cast<float>(r.first_id);
+      if (f.settings.aov_path) f.image.path[p] = static_cast<float>(r.path_hash);
+    }
+  }
+  glm::dvec3 mean = sum / double(s.spp);
+  float* out = &f.image.rgb[(size_t(j) * s.width + i) * 3];
+  for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(mean[c]);
+}
+
+void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts) {
+  const ImageSettings& s = f.settings.image;
+  Shader shader(f.scene, f.query, counts);
+  int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
+  for (int j = y0; j < std::min(y0 + kTileSize, s.height); ++j)
+    for (int i = x0; i < std::min(x0 + kTileSize, s.width); ++i) render_pixel(f, shader, i, j);
+}
+
+void add_counts(BackendStats& stats, const RayCounts& counts) {
+  for (int kind = 0; kind < kRayKinds; ++kind) {
+    stats.rays_by_kind[ray_kind_name(kind)] += counts.n[size_t(kind)];
+    stats.rays += counts.n[size_t(kind)];
+  }
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSettings& settings, BackendStats& stats,
+                 bool parallel) {
+  auto start = std::chrono::steady_clock::now();
+  const ImageSettings& s = settings.image;
+  Image image;
+  image.width = s.width;
+  image.height = s.height;
+  const size_t pixels = size_t(s.width) * s.height;
+  image.rgb.assign(pixels * 3, 0.0f);
+  if (settings.aov_id) image.id.assign(pixels, -1.0f);
+  if (settings.aov_path) image.path.assign(pixels, 0.0f);
+  Frame frame{scene, query, settings, image};
+  const int tiles_x = (s.width + kTileSize - 1) / kTileSize;
+  const int tiles = tiles_x * ((s.height + kTileSize - 1) / kTileSize);
+  std::atomic<int> done{0};
+  std::mutex counts_mutex;
+  RayCounts total;
+  auto run = [&](int begin, int end) {
+    RayCounts counts;
+    for (int tile = begin; tile < end; ++tile) {
+      render_tile(frame, tile, tiles_x, counts);
+      int finished = ++done;
+      if (settings.progress) settings.progress(double(finished) / tiles);
+    }
+    std::lock_guard lock(counts_mutex);
+    total.add(counts);
+  };
+  if (parallel)
+    tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) { run(r.begin(), r.end()); });
+  else
+    run(0, tiles);
+  add_counts(stats, total);
+  stats.ms["render"] += ms_since(start);
+  return image;
+}
+
+std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query, std::span<const TraceQuery> rays,
+                                   BackendStats& stats) {
+  auto start = std::chrono::steady_clock::now();
+  std::vector<TraceResult> results(rays.size());
+  RayCounts counts;
+  Shader shader(scene, query, counts);
+  for (size_t i = 0; i < rays.size(); ++i) {
+    Ray ray{rays[i].origin, rays[i].dir};
+    Hit hit = shader.closest(ray, rays[i].tmin);
+    TraceResult& r = results[i];
+    r.t = hit.t;
+    r.id = hit.id;
+    if (hit.id >= 0) {
+      r.normal = surface_of(scene.objects[size_t(hit.id)], ray, hit.prim).normal;
+    } else if (hit.found()) {  // a light sphere: its outward normal at the hit
+      const Light& light = scene.lights[size_t(-2 - hit.id)];
+      r.normal = glm::normalize(ray.origin + hit.t * ray.dir - light.position);
+    }
+  }
+  stats.rays += rays.size();
+  stats.rays_by_kind["trace"] += rays.size();
+  stats.ms["render"] += ms_since(start);
+  return results;
+}
+
+}  // namespace prism

@@ -1,0 +1,116 @@
+#include "prism/image_io.hpp"
+
+#include <OpenImageIO/imageio.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "prism/errors.hpp"
+#include "prism/texture.hpp"
+
+namespace fs = std::filesystem;
+
+namespace prism {
+
+namespace {
+
+std::string lower_extension(const fs::path& file) {
+  std::string ext = file.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return ext;
+}
+
+// A temporary name beside `file` (same folder, so the rename is atomic),
+// keeping the extension so OpenImageIO picks the right writer.
+fs::path temporary_name(const fs::path& file) {
+  return file.parent_path() / ("." + file.stem().string() + ".tmp" + std::to_string(::getpid()) + file.extension().string());
+}
+
+// Runs `write` on a temporary file, then renames it over `file`; on any
+// failure the temporary is removed and `file` is untouched.
+template <typename WriteFn>
+void write_atomically(const fs::path& file, WriteFn write) {
+  const fs::path tmp = temporary_name(file);
+  try {
+    write(tmp);
+    std::error_code ec;
+    fs::rename(tmp, file, ec);
+    if (ec) throw RuntimeError("cannot write " + file.string() + ": " + ec.message());
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+}
+
+void write_oiio(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels) {
+  auto out = OIIO::ImageOutput::create(path.string());
+  if (!out) throw RuntimeError("cannot write " + path.string() + ": " + OIIO::geterror());
+  if (!out->open(path.string(), spec) || !out->write_image(spec.format, pixels) || !out->close())
+    throw RuntimeError("cannot write " + path.string() + ": " + out->geterror());
+}
+
+void write_png(const Image& image, const fs::path& path) {
+  std::vector<uint8_t> bytes(image.rgb.size());
+  for (size_t i = 0; i < bytes.size(); ++i) {
+    double v = std::clamp(double(image.rgb[i]), 0.0, 1.0);
+    bytes[i] = static_cast<uint8_t>(std::lround(255.0 * linear_to_srgb(v)));
+  }
+  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  write_oiio(path, spec, bytes.data());
+}
+
+void write_exr(const Image& image, const fs::path& path) {
+  std::vector<std::string> names = {"R", "G", "B"};
+  if (!image.id.empty()) names.push_back("id");
+  if (!image.path.empty()) names.push_back("path");
+  const size_t channels = names.size(), pixels = size_t(image.width) * image.height;
+  std::vector<float> data(pixels * channels);
+  for (size_t p = 0; p < pixels; ++p) {
+    float* out = &data[p * channels];
+    std::copy_n(&image.rgb[p * 3], 3, out);
+    size_t c = 3;
+    if (!image.id.empty()) out[c++] = image.id[p];
+    if (!image.path.empty()) out[c++] = image.path[p];
+  }
+  OIIO::ImageSpec spec(image.width, image.height, int(channels), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = names;
+  spec.attribute("compression", "zip");
+  write_oiio(path, spec, data.data());
+}
+
+}  // namespace
+
+void check_output_path(const fs::path& file, const std::vector<std::string>& extensions) {
+  const std::string ext = lower_extension(file);
+  if (std::find(extensions.begin(), extensions.end(), ext) == extensions.end()) {
+    std::string list;
+    for (const auto& e : extensions) list += (list.empty() ? "" : ", ") + e;
+    throw InputError(file.string() + ": unsupported output type '" + ext + "' (expected " + list + ")");
+  }
+  fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw InputError(file.string() + ": folder " + folder.string() + " does not exist");
+  if (::access(folder.c_str(), W_OK) != 0) throw InputError(file.string() + ": folder " + folder.string() + " is not writable");
+  if (fs::is_directory(file, ec)) throw InputError(file.string() + ": is a folder");
+}
+
+void write_image(const Image& image, const fs::path& file) {
+  const std::string ext = lower_extension(file);
+  if (ext != ".png" && ext != ".exr") throw InputError(file.string() + ": unsupported output type '" + ext + "'");
+  write_atomically(file, [&](const fs::path& tmp) { ext == ".png" ? write_png(image, tmp) : write_exr(image, tmp); });
+}
+
+void write_text_file_atomically(const fs::path& file, const std::string& contents) {
+  write_atomically(file, [&](const fs::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary);
+    out << contents;
+    out.close();
+    if (!out) throw RuntimeError("cannot write " + file.string());
+  });
+}
+
+}  // namespace prism

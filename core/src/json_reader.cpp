@@ -1,0 +1,264 @@
+#include "json_reader.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "prism/errors.hpp"
+
+namespace prism::json {
+
+namespace {
+
+// Line and column (1-based) of a byte offset, for syntax errors.
+std::pair<size_t, size_t> line_and_column(const std::string& text, size_t byte) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < byte && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+// Tracks where the parser is, so duplicate keys can be reported by JSON path.
+class DuplicateKeyCheck {
+ public:
+  bool operator()(int, Json::parse_event_t event, Json& parsed) {
+    using E = Json::parse_event_t;
+    switch (event) {
+      case E::object_start: frames_.push_back({false, path_of_next(), {}, 0}); break;
+      case E::array_start: frames_.push_back({true, path_of_next(), {}, 0}); break;
+      case E::object_end:
+      case E::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+      case E::key: on_key(parsed.get<std::string>()); break;
+      case E::value: element_done(); break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool array;
+    std::string path;
+    std::set<std::string> keys;
+    size_t count;  // arrays: elements completed
+  };
+  std::string path_of_next() const {
+    if (frames_.empty()) return "";
+    const Frame& f = frames_.back();
+    return f.array ? index_path(f.path, f.count) : child_path(f.path, key_);
+  }
+  void element_done() {
+    if (!frames_.empty() && frames_.back().array) ++frames_.back().count;
+  }
+  void on_key(const std::string& key) {
+    key_ = key;
+    Frame& f = frames_.back();
+    if (!f.keys.insert(key).second) fail(child_path(f.path, key), "duplicate key");
+  }
+  std::vector<Frame> frames_;
+  std::string key_;
+};
+
+void check_finite_numbers(const Json& value, const std::string& path) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>()))
+    fail(path, "must be a finite number, got " + value.dump());
+  if (value.is_object()) {
+    for (auto it = value.begin(); it != value.end(); ++it) check_finite_numbers(it.value(), child_path(path, it.key()));
+  } else if (value.is_array()) {
+    for (size_t i = 0; i < value.size(); ++i) check_finite_numbers(value[i], index_path(path, i));
+  }
+}
+
+bool in_range(double v, Range r) {
+  if (r.min_exclusive ? !(v > r.min) : !(v >= r.min)) return false;
+  if (r.max_exclusive ? !(v < r.max) : !(v <= r.max)) return false;
+  return true;
+}
+
+// The bound `v` breaks, e.g. "> 0"; both ends when the range is a closed interval.
+std::string range_text(Range r, double v) {
+  if (std::isfinite(r.min) && std::isfinite(r.max) && !r.min_exclusive && !r.max_exclusive)
+    return "in [" + format_number(r.min) + ", " + format_number(r.max) + "]";
+  const bool below = r.min_exclusive ? !(v > r.min) : !(v >= r.min);
+  std::string lo = r.min_exclusive ? "> " + format_number(r.min) : ">= " + format_number(r.min);
+  std::string hi = r.max_exclusive ? "< " + format_number(r.max) : "<= " + format_number(r.max);
+  return below ? lo : hi;
+}
+
+}  // namespace
+
+Json parse_strict(const std::string& text, const std::string& source_name) {
+  DuplicateKeyCheck duplicates;
+  Json root;
+  try {
+    root = Json::parse(text, std::ref(duplicates), /*allow_exceptions=*/true, /*ignore_comments=*/false);
+  } catch (const InputError& e) {
+    throw InputError(source_name + ": " + e.what());
+  } catch (const Json::parse_error& e) {
+    auto [line, column] = line_and_column(text, e.byte > 0 ? e.byte - 1 : 0);
+    std::string what = e.what();
+    auto colon = what.find(": ", what.find("column"));
+    std::string detail = colon == std::string::npos ? what : what.substr(colon + 2);
+    throw InputError(source_name + ": not valid JSON at line " + std::to_string(line) + ", column " +
+                     std::to_string(column) + ": " + detail);
+  }
+  check_finite_numbers(root, "");
+  return root;
+}
+
+void fail(const std::string& path, const std::string& message) {
+  throw InputError((path.empty() ? std::string("(top level)") : path) + ": " + message);
+}
+
+std::string format_number(double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.17g", value);
+  std::string shortest = buffer;
+  for (int digits = 1; digits < 17; ++digits) {  // the shortest text that reads back the same
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (std::strtod(buffer, nullptr) == value) return buffer;
+  }
+  return shortest;
+}
+
+std::string describe(const Json& value) {
+  switch (value.type()) {
+    case Json::value_t::null: return "null";
+    case Json::value_t::boolean: return value.get<bool>() ? "true" : "false";
+    case Json::value_t::string: return "a string";
+    case Json::value_t::array: return "an array of " + std::to_string(value.size());
+    case Json::value_t::object: return "an object";
+    case Json::value_t::number_float: return format_number(value.get<double>());
+    default: return value.dump();
+  }
+}
+
+std::string child_path(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string index_path(const std::string& path, size_t index) {
+  return path + "[" + std::to_string(index) + "]";
+}
+
+double read_number(const Json& value, const std::string& path, Range range) {
+  if (!value.is_number()) fail(path, "must be a number, got " + describe(value));
+  double v = value.get<double>();
+  if (!std::isfinite(v)) fail(path, "must be a finite number");
+  if (!in_range(v, range)) fail(path, "must be " + range_text(range, v) + ", got " + format_number(v));
+  return v;
+}
+
+long long read_integer(const Json& value, const std::string& path, long long min, long long max) {
+  if (!value.is_number_integer()) fail(path, "must be an integer, got " + describe(value));
+  if (value.is_number_unsigned() && value.get<unsigned long long>() > static_cast<unsigned long long>(max))
+    fail(path, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + value.dump());
+  long long v = value.get<long long>();
+  if (v < min || v > max)
+    fail(path, "must be in [" + std::to_string(min) + ", " + std::to_string(max) + "], got " + std::to_string(v));
+  return v;
+}
+
+std::string read_string(const Json& value, const std::string& path) {
+  if (!value.is_string()) fail(path, "must be a string, got " + describe(value));
+  return value.get<std::string>();
+}
+
+std::vector<double> read_numbers(const Json& value, const std::string& path, size_t count, Range range) {
+  if (!value.is_array() || value.size() != count)
+    fail(path, "must be an array of " + std::to_string(count) + " numbers, got " + describe(value));
+  std::vector<double> out(count);
+  for (size_t i = 0; i < count; ++i) out[i] = read_number(value[i], index_path(path, i), range);
+  return out;
+}
+
+glm::dvec3 read_vec3(const Json& value, const std::string& path, Range range) {
+  auto v = read_numbers(value, path, 3, range);
+  return {v[0], v[1], v[2]};
+}
+
+void require_nonzero(const glm::dvec3& v, const std::string& path) {
+  if (v.x == 0 && v.y == 0 && v.z == 0) fail(path, "must be non-zero, got [0, 0, 0]");
+}
+
+ObjectReader::ObjectReader(const Json& value, std::string path) : value_(value), path_(std::move(path)) {
+  if (!value.is_object()) fail(path_, "must be an object, got " + describe(value));
+}
+
+void ObjectReader::know(const std::string& key) {
+  if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.push_back(key);
+}
+
+bool ObjectReader::has(const std::string& key) const { return value_.contains(key); }
+
+const Json& ObjectReader::at(const std::string& key) {
+  know(key);
+  if (!value_.contains(key)) fail(path_of(key), "required key is missing");
+  return value_.at(key);
+}
+
+const Json* ObjectReader::find(const std::string& key) {
+  know(key);
+  auto it = value_.find(key);
+  return it == value_.end() ? nullptr : &*it;
+}
+
+void ObjectReader::require_absent(const std::string& key, const std::string& why) {
+  know(key);
+  if (value_.contains(key)) fail(path_of(key), why);
+}
+
+double ObjectReader::number(const std::string& key, double fallback, Range range) {
+  const Json* v = find(key);
+  return v ? read_number(*v, path_of(key), range) : fallback;
+}
+
+double ObjectReader::required_number(const std::string& key, Range range) {
+  return read_number(at(key), path_of(key), range);
+}
+
+int ObjectReader::integer(const std::string& key, int fallback, int min, int max) {
+  const Json* v = find(key);
+  return v ? static_cast<int>(read_integer(*v, path_of(key), min, max)) : fallback;
+}
+
+glm::dvec3 ObjectReader::vec3(const std::string& key, glm::dvec3 fallback, Range range) {
+  const Json* v = find(key);
+  return v ? read_vec3(*v, path_of(key), range) : fallback;
+}
+
+glm::dvec3 ObjectReader::required_vec3(const std::string& key, Range range) {
+  return read_vec3(at(key), path_of(key), range);
+}
+
+glm::dvec2 ObjectReader::vec2(const std::string& key, glm::dvec2 fallback, Range range) {
+  const Json* v = find(key);
+  if (!v) return fallback;
+  auto n = read_numbers(*v, path_of(key), 2, range);
+  return {n[0], n[1]};
+}
+
+std::optional<std::string> ObjectReader::string(const std::string& key) {
+  const Json* v = find(key);
+  if (!v) return std::nullopt;
+  return read_string(*v, path_of(key));
+}
+
+void ObjectReader::finish() const {
+  for (auto it = value_.begin(); it != value_.end(); ++it) {
+    if (std::find(known_.begin(), known_.end(), it.key()) != known_.end()) continue;
+    std::string list;
+    for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
+    fail(path_of(it.key()), "unknown key (expected one of: " + list + ")");
+  }
+}
+
+}  // namespace prism::json

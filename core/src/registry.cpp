@@ -1,0 +1,238 @@
+#include "prism/registry.hpp"
+
+#include <dlfcn.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <set>
+
+#include "prism/errors.hpp"
+
+namespace fs = std::filesystem;
+
+namespace prism {
+
+namespace {
+
+constexpr const char* kPrimitivePrefix = "libprism_primitive_";
+constexpr const char* kBackendPrefix = "libprism_backend_";
+
+std::string prefix_of(const std::string& kind) { return kind == "primitive" ? kPrimitivePrefix : kBackendPrefix; }
+
+fs::path executable_folder() {
+  std::error_code ec;
+  fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::current_path() : exe.parent_path();
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
+  return out.empty() ? "none" : out;
+}
+
+std::string join_paths(const std::vector<fs::path>& paths) {
+  std::vector<std::string> items;
+  for (const auto& p : paths) items.push_back(p.string());
+  return join(items);
+}
+
+}  // namespace
+
+std::shared_ptr<SharedLibrary> SharedLibrary::open(const fs::path& path, std::string& error) {
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!handle) {
+    const char* reason = dlerror();
+    error = reason ? reason : "dlopen failed";
+    return nullptr;
+  }
+  return std::shared_ptr<SharedLibrary>(new SharedLibrary(path, handle));
+}
+
+SharedLibrary::~SharedLibrary() {
+  if (handle_) dlclose(handle_);
+}
+
+void* SharedLibrary::symbol(const char* name) const { return dlsym(handle_, name); }
+
+std::shared_ptr<const PrimitivePlugin> load_primitive_plugin(const fs::path& path, std::string& error) {
+  auto library = SharedLibrary::open(path, error);
+  if (!library) return nullptr;
+  auto entry = reinterpret_cast<PrismPrimitiveEntryFn>(library->symbol(PRISM_PRIMITIVE_ENTRY_SYMBOL));
+  if (!entry) {
+    error = std::string("no entry symbol ") + PRISM_PRIMITIVE_ENTRY_SYMBOL;
+    return nullptr;
+  }
+  const PrismPrimitiveDesc* desc = entry();
+  if (!desc) {
+    error = "entry function returned no descriptor";
+    return nullptr;
+  }
+  if (desc->abi_version != PRISM_PRIMITIVE_ABI_VERSION) {
+    error = "ABI version " + std::to_string(desc->abi_version) + ", this build of Prism needs " +
+            std::to_string(PRISM_PRIMITIVE_ABI_VERSION);
+    return nullptr;
+  }
+  if (desc->desc_size < sizeof(PrismPrimitiveDesc) || !desc->type_name || !desc->intersect || !desc->surface ||
+      !desc->pack || !desc->bounds || (desc->field_count > 0 && !desc->fields) || desc->record_size % 16 != 0) {
+    error = "descriptor is incomplete (missing functions, fields or a record size that is not a multiple of 16)";
+    return nullptr;
+  }
+  return std::make_shared<PrimitivePlugin>(std::move(library), desc);
+}
+
+std::shared_ptr<const BackendPlugin> load_backend_plugin(const fs::path& path, std::string& error) {
+  auto library = SharedLibrary::open(path, error);
+  if (!library) return nullptr;
+  auto entry = reinterpret_cast<PrismBackendEntryFn>(library->symbol(PRISM_BACKEND_ENTRY_SYMBOL));
+  if (!entry) {
+    error = std::string("no entry symbol ") + PRISM_BACKEND_ENTRY_SYMBOL;
+    return nullptr;
+  }
+  const PrismBackendDesc* desc = entry();
+  if (!desc) {
+    error = "entry function returned no descriptor";
+    return nullptr;
+  }
+  if (desc->abi_version != PRISM_BACKEND_ABI_VERSION) {
+    error = "ABI version " + std::to_string(desc->abi_version) + ", this build of Prism needs " +
+            std::to_string(PRISM_BACKEND_ABI_VERSION);
+    return nullptr;
+  }
+  if (desc->desc_size < sizeof(PrismBackendDesc) || !desc->name || !desc->probe || !desc->create) {
+    error = "descriptor is incomplete";
+    return nullptr;
+  }
+  return std::make_shared<BackendPlugin>(std::move(library), desc);
+}
+
+PrismBackendProbe BackendPlugin::probe() const {
+  PrismBackendProbe result{};
+  try {
+    desc_->probe(&result);
+  } catch (const std::exception& e) {
+    result.usable = 0;
+    std::snprintf(result.reason, sizeof result.reason, "probe failed: %s", e.what());
+  }
+  return result;
+}
+
+std::unique_ptr<Backend> BackendPlugin::create() const {
+  return std::unique_ptr<Backend>(desc_->create());
+}
+
+std::vector<fs::path> Registry::default_search_path() {
+  std::vector<fs::path> folders;
+  if (const char* env = std::getenv("PRISM_PLUGIN_PATH")) {
+    std::string list = env;
+    size_t start = 0;
+    while (start <= list.size()) {
+      size_t end = list.find(':', start);
+      if (end == std::string::npos) end = list.size();
+      if (end > start) folders.emplace_back(list.substr(start, end - start));
+      start = end + 1;
+    }
+  }
+  folders.push_back((executable_folder() / ".." / "lib" / "prism").lexically_normal());
+  return folders;
+}
+
+Registry::Registry(std::vector<fs::path> search_path) : search_path_(std::move(search_path)) {}
+
+std::vector<fs::path> Registry::candidates(const std::string& kind, const std::string& name) const {
+  std::vector<fs::path> found;
+  for (const auto& folder : search_path_) {
+    fs::path file = folder / (prefix_of(kind) + name + ".so");
+    std::error_code ec;
+    if (fs::exists(file, ec)) found.push_back(file);
+  }
+  return found;
+}
+
+std::vector<std::string> Registry::names_found(const std::string& kind) const {
+  std::set<std::string> names;
+  const std::string prefix = prefix_of(kind);
+  for (const auto& folder : search_path_) {
+    std::error_code ec;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+      std::string file = it->path().filename().string();
+      if (file.rfind(prefix, 0) == 0 && it->path().extension() == ".so")
+        names.insert(file.substr(prefix.size(), file.size() - prefix.size() - 3));
+    }
+  }
+  return {names.begin(), names.end()};
+}
+
+std::vector<std::string> Registry::primitive_types_found() const { return names_found("primitive"); }
+std::vector<std::string> Registry::backend_names_found() const { return names_found("backend"); }
+
+template <typename Plugin, typename Loader>
+static std::shared_ptr<const Plugin> load_first(const std::vector<fs::path>& files, Loader loader,
+                                                const std::string& what, const std::string& name,
+                                                std::vector<std::string>& failures) {
+  for (const auto& file : files) {
+    std::string error;
+    auto plugin = loader(file, error);
+    if (plugin && plugin->name() == name) return plugin;
+    if (plugin) error = "it declares " + what + " '" + plugin->name() + "', not '" + name + "'";
+    failures.push_back(file.string() + ": " + error);
+  }
+  return nullptr;
+}
+
+std::shared_ptr<const PrimitivePlugin> Registry::primitive(const std::string& type) {
+  if (auto it = primitives_.find(type); it != primitives_.end()) return it->second;
+  std::vector<std::string> failures;
+  auto plugin = load_first<PrimitivePlugin>(candidates("primitive", type), load_primitive_plugin, "type", type, failures);
+  if (!plugin) {
+    if (failures.empty())
+      throw InputError("unknown object type '" + type + "' (primitive plugins found: " + join(primitive_types_found()) +
+                       "; searched " + join_paths(search_path_) + ")");
+    throw InputError("the primitive plugin for '" + type + "' failed to load: " + join(failures));
+  }
+  primitives_[type] = plugin;
+  return plugin;
+}
+
+std::shared_ptr<const BackendPlugin> Registry::backend(const std::string& name) {
+  if (auto it = backends_.find(name); it != backends_.end()) return it->second;
+  std::vector<std::string> failures;
+  auto plugin = load_first<BackendPlugin>(candidates("backend", name), load_backend_plugin, "backend", name, failures);
+  if (!plugin) {
+    if (failures.empty())
+      throw InputError("unknown backend '" + name + "' (backends found: " + join(backend_names_found()) +
+                       "; searched " + join_paths(search_path_) + ")");
+    throw InputError("the backend '" + name + "' failed to load: " + join(failures));
+  }
+  backends_[name] = plugin;
+  return plugin;
+}
+
+std::vector<PluginReport> Registry::scan_all() {
+  std::vector<PluginReport> reports;
+  for (const std::string kind : {"backend", "primitive"}) {
+    for (const auto& name : names_found(kind)) {
+      for (const auto& file : candidates(kind, name)) {
+        PluginReport report{kind, name, file, "", "", false, ""};
+        if (kind == "backend") {
+          auto plugin = load_backend_plugin(file, report.error);
+          if (plugin) {
+            report.version = plugin->desc().version ? plugin->desc().version : "";
+            PrismBackendProbe probe = plugin->probe();
+            report.usable = probe.usable != 0;
+            report.detail = probe.reason;
+          }
+        } else {
+          auto plugin = load_primitive_plugin(file, report.error);
+          if (plugin) report.version = plugin->desc().plugin_version ? plugin->desc().plugin_version : "";
+        }
+        reports.push_back(report);
+      }
+    }
+  }
+  return reports;
+}
+
+}  // namespace prism

@@ -1,0 +1,187 @@
+#include "shading.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "prism/texture.hpp"
+
+namespace prism {
+
+namespace {
+
+double pow5(double x) { return x * x * x * x * x; }  // by multiplication, as the format fixes
+
+glm::dvec3 reflect_dir(const glm::dvec3& d, const glm::dvec3& n) { return glm::normalize(d - 2.0 * glm::dot(d, n) * n); }
+
+// The format's secondary-ray offset for a hit at P.
+double offset_epsilon(const glm::dvec3& p) {
+  return 1e-4 * (1.0 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+}
+
+}  // namespace
+
+const char* ray_kind_name(int kind) {
+  static const char* names[kRayKinds] = {"camera", "shadow", "reflect", "refract", "alpha", "shade1"};
+  return names[kind];
+}
+
+struct Shader::Surface {
+  glm::dvec3 position;
+  glm::dvec3 n;  // facing the incoming ray
+  bool front;
+  double cosi;
+  double t;
+  glm::dvec3 color;  // c: material colour times texture
+  double alpha;      // a
+  const Material* material;
+  double epsilon;
+  Ray spawn(const glm::dvec3& dir, double side) const { return {position + side * epsilon * n, dir}; }
+};
+
+Hit Shader::closest(const Ray& ray, double tmin) const {
+  Hit hit = query_.closest(ray, tmin);
+  Hit light = intersect_light_spheres(scene_, ray, tmin, hit.t);
+  return light.t < hit.t ? light : hit;  // equal t: the object wins
+}
+
+Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
+  const Object& object = scene_.objects[size_t(hit.id)];
+  SurfacePoint sp = surface_of(object, ray, hit.prim);
+  Surface s;
+  s.position = sp.position;
+  s.front = glm::dot(ray.dir, sp.normal) < 0;
+  s.n = s.front ? sp.normal : -sp.normal;
+  s.cosi = std::clamp(-glm::dot(ray.dir, s.n), 0.0, 1.0);
+  s.t = hit.t;
+  s.material = &scene_.materials[size_t(object.material)];
+  s.color = s.material->color;
+  s.alpha = 1.0;
+  if (s.material->texture >= 0) {
+    glm::dvec2 uv = sp.uv * s.material->uv_scale + s.material->uv_offset;
+    glm::dvec4 texel = sample_texture(scene_.textures[size_t(s.material->texture)], uv);
+    s.color *= glm::dvec3(texel);
+    s.alpha = texel.a;
+  }
+  s.epsilon = offset_epsilon(s.position);
+  return s;
+}
+
+void Shader::note(uint32_t value) {
+  if (!hashing_) return;
+  for (int byte = 0; byte < 4; ++byte) {  // FNV-1a, one byte at a time
+    hash_ ^= (value >> (8 * byte)) & 0xffu;
+    hash_ *= 16777619u;
+  }
+}
+
+bool Shader::shadowed(const glm::dvec3& origin, const glm::dvec3& to_light, double distance) {
+  ++counts_.n[kShadowRay];
+  return query_.occluded({origin, to_light}, distance);
+}
+
+glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
+  const Material& m = *s.material;
+  glm::dvec3 sum = scene_.ambient * s.color;
+  const glm::dvec3 origin = s.position + s.epsilon * s.n;
+  for (size_t k = 0; k < scene_.lights.size(); ++k) {
+    const Light& light = scene_.lights[k];
+    glm::dvec3 l, energy = light.color * light.intensity;
+    double distance = kInfinity;
+    if (light.type == Light::Type::Point) {
+      glm::dvec3 to = light.position - s.position;
+      double d = glm::length(to);
+      l = to / d;
+      energy /= 1.0 + light.linear * d + light.quadratic * d * d;
+      distance = glm::length(light.position - origin);
+    } else {
+      l = -light.direction;
+    }
+    double ndl = glm::dot(s.n, l);
+    if (!(ndl > 0)) continue;  // a light behind the surface adds nothing and needs no shadow ray
+    bool blocked = shadowed(origin, l, distance);
+    note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
+    glm::dvec3 visibility = blocked ? scene_.shadow_ambient : glm::dvec3(1.0);
+    double phong = 0.0;
+    if (m.specular > 0) {
+      glm::dvec3 r = -l - 2.0 * glm::dot(-l, s.n) * s.n;
+      phong = m.specular * std::pow(std::max(0.0, glm::dot(r, -dir)), m.shininess);
+    }
+    sum += energy * visibility * (m.diffuse * s.color * ndl + phong);
+  }
+  return sum;
+}
+
+glm::dvec3 Shader::shade1(const Ray& ray) {
+  ++counts_.n[kShade1Ray];
+  Hit hit = closest(ray, 0.0);
+  note(uint32_t(hit.id));
+  if (!hit.found()) return background_radiance(scene_, ray.dir);
+  if (hit.id < 0) return scene_.lights[size_t(-2 - hit.id)].color;
+  Surface s = surface_at(ray, hit);
+  glm::dvec3 result = local_light(s, ray.dir);
+  if (s.material->dielectric() && !s.front) result *= glm::exp(-s.material->absorb * hit.t);
+  return result;
+}
+
+SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool want_path) {
+  hashing_ = want_path;
+  hash_ = 2166136261u;
+  SampleResult result;
+  glm::dvec3 w(1.0), radiance(0.0);
+  Ray ray = camera_ray;
+  int kind = kCameraRay;
+  for (int depth = 1; depth <= max_depth; ++depth) {
+    ++counts_.n[size_t(kind)];
+    Hit hit = closest(ray, 0.0);
+    if (depth == 1) result.first_id = hit.id;
+    note(uint32_t(hit.id));
+    if (!hit.found()) {
+      radiance += w * background_radiance(scene_, ray.dir);
+      break;
+    }
+    if (hit.id < 0) {
+      radiance += w * scene_.lights[size_t(-2 - hit.id)].color;
+      break;
+    }
+    Surface s = surface_at(ray, hit);
+    const Material& m = *s.material;
+    if (m.dielectric() && !s.front) w *= glm::exp(-m.absorb * hit.t);
+    if (!m.dielectric()) {
+      double F = m.reflect > 0 ? m.reflect + (1 - m.reflect) * pow5(1 - s.cosi) : 0.0;
+      double weight = s.alpha * (1 - F);
+      if (weight > 0) radiance += w * weight * local_light(s, ray.dir);
+      if (s.alpha < 1) {
+        w *= 1 - s.alpha;
+        ray = s.spawn(ray.dir, -1);
+        kind = kPassRay;
+      } else if (F > 0) {
+        w *= F;
+        ray = s.spawn(reflect_dir(ray.dir, s.n), +1);
+        kind = kReflectRay;
+      } else {
+        break;
+      }
+      continue;
+    }
+    const double n1 = s.front ? 1.0 : m.ior, n2 = s.front ? m.ior : 1.0, eta = n1 / n2;
+    const double dn = glm::dot(s.n, ray.dir);
+    const double k = 1 - eta * eta * (1 - dn * dn);
+    if (k < 0) {  // total internal reflection: w unchanged
+      ray = s.spawn(reflect_dir(ray.dir, s.n), +1);
+      kind = kReflectRay;
+      continue;
+    }
+    const double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
+    const double x = n1 <= n2 ? s.cosi : std::sqrt(k);
+    const double F = r0 + (1 - r0) * pow5(1 - x);
+    radiance += w * F * shade1(s.spawn(reflect_dir(ray.dir, s.n), +1));
+    w *= 1 - F;
+    ray = s.spawn(glm::normalize(eta * ray.dir - (eta * dn + std::sqrt(k)) * s.n), -1);
+    kind = kRefractRay;
+  }
+  result.radiance = radiance;
+  result.path_hash = (hash_ >> 24) ^ (hash_ & 0xffffffu);  // folded to 24 bits: exact in a float
+  return result;
+}
+
+}  // namespace prism

@@ -1,0 +1,52 @@
+// The format's Whitted shading, once, for every CPU backend: an iterative
+// loop over at most max_depth interactions with Schlick reflection,
+// dielectrics, alpha pass-through, absorption and shadow rays.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "prism/cpu_render.hpp"
+
+namespace prism {
+
+enum RayKind { kCameraRay, kShadowRay, kReflectRay, kRefractRay, kPassRay, kShade1Ray, kRayKinds };
+const char* ray_kind_name(int kind);
+
+struct RayCounts {
+  std::array<uint64_t, kRayKinds> n{};
+  void add(const RayCounts& o) {
+    for (int i = 0; i < kRayKinds; ++i) n[size_t(i)] += o.n[size_t(i)];
+  }
+};
+
+struct SampleResult {
+  glm::dvec3 radiance{0};
+  int32_t first_id = kMissId;  // the `id` AOV
+  uint32_t path_hash = 0;      // the `path` AOV (24 bits, exact in a float)
+};
+
+class Shader {
+ public:
+  Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts)
+      : scene_(scene), query_(query), counts_(counts) {}
+  SampleResult trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
+  // Closest hit with t > tmin over objects and visible light spheres (objects win ties).
+  Hit closest(const Ray& ray, double tmin) const;
+
+ private:
+  struct Surface;  // shading data at one hit
+  Surface surface_at(const Ray& ray, const Hit& hit) const;
+  glm::dvec3 local_light(const Surface& s, const glm::dvec3& dir);
+  glm::dvec3 shade1(const Ray& ray);
+  bool shadowed(const glm::dvec3& origin, const glm::dvec3& to_light, double distance);
+  void note(uint32_t value);
+
+  const Scene& scene_;
+  const ObjectQuery& query_;
+  RayCounts& counts_;
+  bool hashing_ = false;
+  uint32_t hash_ = 0;
+};
+
+}  // namespace prism

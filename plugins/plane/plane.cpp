@@ -1,0 +1,108 @@
+// Plane primitive: dot(normal, p - point) = 0, infinite and two-sided. Not
+// TRANSFORMABLE: `point` and `normal` place it, so local == world and the
+// spec's uv, which uses world P, is computed here directly.
+//
+// Numerics
+// - intersect: t = dot(m, point - o) / dot(m, d) with m the unit normal. The
+//   subtraction point - o is the only cancellation and it is exact to one
+//   rounding, so t has relative error ~eps at any distance. A ray parallel
+//   to the plane (dot(m, d) == 0 exactly) misses; no epsilon band.
+// - surface: P = o + t d is pulled back onto the plane by removing its
+//   normal component (P -= dot(m, P - point) m), so the secondary-ray offset
+//   always starts from the right side; the tangential error (~eps |o|) only
+//   moves uv by that much.
+// - m is normalised with prism::sdk::safe_normalize, so a normal such as
+//   (1e-300, 0, 0), which passes the non-zero check, still works.
+#include <cmath>
+
+#include "prism/primitive_abi.h"
+#include "prism/sdk/math.hpp"
+#include "prism/sdk/primitive_sdk.hpp"
+
+namespace {
+
+using namespace prism::sdk;
+
+// std430-friendly: four vec4s of doubles.
+struct PlaneRecord {
+  double point[4];   // w: uv_scale
+  double normal[4];  // unit normal m
+  double t1[4];      // spec tangent frame for uv
+  double t2[4];
+};
+static_assert(sizeof(PlaneRecord) % 16 == 0);
+
+const double kDefaultUvScale[] = {1.0};
+
+const PrismField kFields[] = {
+    {"point", PRISM_FIELD_ARRAY, 3, PRISM_FIELD_REQUIRED | PRISM_FIELD_LENGTH, -kInf, kInf, 0.0, nullptr,
+     "a point on the plane"},
+    {"normal", PRISM_FIELD_ARRAY, 3, PRISM_FIELD_REQUIRED | PRISM_FIELD_NONZERO, -kInf, kInf, 0.0, nullptr,
+     "normal of the plane (any length, not all zero)"},
+    {"uv_scale", PRISM_FIELD_NUMBER, 1, PRISM_FIELD_MIN_EXCLUSIVE, 0.0, kInf, 0.0, kDefaultUvScale,
+     "world units to uv: u = dot(P - point, t1) * uv_scale"},
+};
+
+void pack(const double* values, void* record) {
+  auto* rec = static_cast<PlaneRecord*>(record);
+  *rec = PlaneRecord{};
+  glm::dvec3 m = safe_normalize(load3(values + 3));
+  // Spec: t1 = normalize(cross(|m.y| < 0.999 ? (0,1,0) : (1,0,0), m)), t2 = cross(m, t1).
+  glm::dvec3 helper = std::abs(m.y) < 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  glm::dvec3 t1 = glm::normalize(glm::cross(helper, m));
+  glm::dvec3 t2 = glm::cross(m, t1);
+  store3(load3(values), rec->point);
+  rec->point[3] = values[6];
+  store3(m, rec->normal);
+  store3(t1, rec->t1);
+  store3(t2, rec->t2);
+}
+
+int bounds(const void*, double*, double*) { return 0; }  // infinite
+
+int intersect(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit) {
+  const auto& rec = record_of<PlaneRecord>(record);
+  glm::dvec3 m = load3(rec.normal), o = load3(ray->origin), d = load3(ray->dir);
+  double denom = glm::dot(m, d);
+  if (denom == 0.0) return 0;
+  double t = glm::dot(m, load3(rec.point) - o) / denom;
+  if (!(t > tmin && t <= tmax)) return 0;  // NaN rays fail here too
+  *hit = PrismHit{};
+  hit->t = t;
+  return 1;
+}
+
+void surface(const void* record, const PrismRay* ray, const PrismHit* hit, PrismSurface* out) {
+  const auto& rec = record_of<PlaneRecord>(record);
+  glm::dvec3 m = load3(rec.normal), point = load3(rec.point);
+  glm::dvec3 p = load3(ray->origin) + hit->t * load3(ray->dir);
+  p -= glm::dot(m, p - point) * m;
+  double scale = rec.point[3];
+  double u = glm::dot(p - point, load3(rec.t1)) * scale;
+  double v = glm::dot(p - point, load3(rec.t2)) * scale;
+  write_surface(out, p, m, u, v);
+}
+
+const PrismPrimitiveDesc kDesc = {
+    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
+    .desc_size = sizeof(PrismPrimitiveDesc),
+    .type_name = "plane",
+    .plugin_version = "1.0.0",
+    .flags = 0,
+    .field_count = sizeof(kFields) / sizeof(kFields[0]),
+    .fields = kFields,
+    .record_size = sizeof(PlaneRecord),
+    .reserved = 0,
+    .validate = validate_nothing,
+    .pack = pack,
+    .bounds = bounds,
+    .intersect = intersect,
+    .intersect_batch = intersect_batch<intersect>,
+    .surface = surface,
+    .glsl_source = nullptr,
+    .glsl_prefix = nullptr,
+};
+
+}  // namespace
+
+extern "C" PRISM_EXPORT const PrismPrimitiveDesc* prism_primitive_entry(void) { return &kDesc; }

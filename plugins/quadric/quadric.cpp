@@ -1,0 +1,107 @@
+// Quadric primitive: f(p) = A x^2 + B y^2 + C z^2 + D xy + E yz + F xz
+// + G x + H y + I z + J = 0 inside the clip box clip_min <= p <= clip_max
+// (null entries: unbounded); the core applies `center` and `rotation`.
+// Outward normal: grad f (negating every coefficient flips it); where the
+// gradient vanishes the normal is all zeros and the core uses -dir.
+//
+// Numerics (prism/sdk/quadric_math.hpp, shared with cylinder and cone so
+// that they give bit-identical t and normal)
+// - The origin is moved to the foot of the perpendicular from the local
+//   origin before b and c are formed, so a far camera does not swamp c with
+//   |o|^2 terms.
+// - Roots by the stable pair c/q, q/a with an fma-accurate discriminant; the
+//   t^2 coefficient is tested against exactly 0 (linear case) and nothing
+//   else, so a tiny `a` keeps an accurate near root and sends the far one
+//   towards infinity (non-finite roots are rejected).
+// - First root in (tmin, tmax] whose point lies in the clip box, else the far
+//   one; the point is formed in the re-centred frame and pulled onto f = 0 by
+//   one Newton step along the gradient in `surface`.
+// - clip_min/clip_max are coordinates, so their finite entries are held to
+//   |x| <= 1e7 here: the field carries no PRISM_FIELD_LENGTH flag because a
+//   null entry reads as +-inf.
+#include <cmath>
+
+#include "prism/primitive_abi.h"
+#include "prism/sdk/math.hpp"
+#include "prism/sdk/primitive_sdk.hpp"
+#include "prism/sdk/quadric_math.hpp"
+
+namespace {
+
+using namespace prism::sdk;
+
+using QuadricRecord = QuadricShape;
+static_assert(sizeof(QuadricRecord) % 16 == 0);
+
+const double kNoMin[] = {-kInf, -kInf, -kInf};
+const double kNoMax[] = {kInf, kInf, kInf};
+
+const PrismField kFields[] = {
+    {"coefficients", PRISM_FIELD_ARRAY, 10, PRISM_FIELD_REQUIRED, -kInf, kInf, 0.0, nullptr,
+     "[A,B,C,D,E,F,G,H,I,J] of Ax^2+By^2+Cz^2+Dxy+Eyz+Fxz+Gx+Hy+Iz+J = 0"},
+    {"clip_min", PRISM_FIELD_ARRAY_OR_NULL, 3, 0, -kInf, kInf, -kInf, kNoMin,
+     "lower corner of the clip box; null = unbounded"},
+    {"clip_max", PRISM_FIELD_ARRAY_OR_NULL, 3, 0, -kInf, kInf, kInf, kNoMax,
+     "upper corner of the clip box; null = unbounded"},
+};
+
+constexpr double kMaxCoordinate = 1e7;  // the spec's bound on every coordinate
+
+int validate_clip(const double* clip, const char* name, PrismError* err) {
+  for (int i = 0; i < 3; ++i)
+    if (std::isfinite(clip[i]) && std::abs(clip[i]) > kMaxCoordinate)
+      return fail(err, name, "entry %d must have magnitude <= 1e7, got %s", i, format_number(clip[i]).text);
+  return 0;
+}
+
+int validate(const double* values, PrismError* err) {
+  bool any = false;
+  for (int i = 0; i < 9; ++i) any = any || values[i] != 0.0;
+  if (!any) return fail(err, "coefficients", "A..I (the first 9) must not all be 0");
+  const double* lo = values + 10;
+  const double* hi = values + 13;
+  if (validate_clip(lo, "clip_min", err) || validate_clip(hi, "clip_max", err)) return 1;
+  for (int i = 0; i < 3; ++i)
+    if (!(lo[i] <= hi[i]))
+      return fail(err, "clip_max", "entry %d must be >= clip_min (%s), got %s", i, format_number(lo[i]).text,
+                  format_number(hi[i]).text);
+  return 0;
+}
+
+void pack(const double* values, void* record) {
+  *static_cast<QuadricRecord*>(record) = make_quadric(values, values + 10, values + 13);
+}
+
+int bounds(const void* record, double lo[3], double hi[3]) {
+  return quadric_bounds(record_of<QuadricRecord>(record), lo, hi) ? 1 : 0;
+}
+
+void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
+  glm::dvec3 point, normal;
+  quadric_record_surface(record, hit, point, normal);
+  write_surface(out, point, normal, 0.0, 0.0);
+}
+
+const PrismPrimitiveDesc kDesc = {
+    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
+    .desc_size = sizeof(PrismPrimitiveDesc),
+    .type_name = "quadric",
+    .plugin_version = "1.0.0",
+    .flags = PRISM_PRIMITIVE_TRANSFORMABLE,
+    .field_count = sizeof(kFields) / sizeof(kFields[0]),
+    .fields = kFields,
+    .record_size = sizeof(QuadricRecord),
+    .reserved = 0,
+    .validate = validate,
+    .pack = pack,
+    .bounds = bounds,
+    .intersect = intersect_quadric_record,
+    .intersect_batch = intersect_batch<intersect_quadric_record>,
+    .surface = surface,
+    .glsl_source = nullptr,
+    .glsl_prefix = nullptr,
+};
+
+}  // namespace
+
+extern "C" PRISM_EXPORT const PrismPrimitiveDesc* prism_primitive_entry(void) { return &kDesc; }

@@ -1,0 +1,211 @@
+// Torus primitive: (|p|^2 + R^2 - r^2)^2 = 4 R^2 (p.x^2 + p.z^2), axis local
+// y, 0 < r < R; the core applies `center` and `rotation`.
+//
+// Numerics (why not a closed-form quartic: see shared/notes/numerics.md;
+// closed forms lose everything for far origins, thin tubes and grazing rays)
+// 1. Bounding sphere: the ray is clipped to the sphere of radius
+//    (R + r)(1 + 1e-3) with the robust discriminant, and the origin is moved
+//    to the chord's midpoint (the foot of the perpendicular), in double. A
+//    camera 1e4 or 1e6 away then loses nothing, and the quartic is built from
+//    numbers of the torus's size.
+// 2. Scale by 1/R: in s = (t - t_f)/R the quartic f(s) is monic with O(1)
+//    coefficients. Its roots are isolated on the chord [-H, H] by the
+//    derivative sequence: roots of the quadratic f'' split the cubic f' into
+//    monotone pieces, each sign change of f' is solved by safeguarded
+//    Newton-bisection, and those critical points split f into monotone
+//    pieces, each holding at most one root. Critical points are well
+//    conditioned (f'' = O(1) there) even where f itself is not.
+// 3. Signs and roots come from the signed distance to the tube,
+//    g(s) = sqrt((rho - 1)^2 + y^2) - r/R, not from the expanded quartic: g
+//    has the same sign as f everywhere (f = A*B with A = dist^2 - (r/R)^2 and
+//    B > 0 for r < R), but no cancellation: for r/R = 1e-3 the quartic loses
+//    ~6 digits near the tube while g keeps full precision, and |g'| <= 1.
+//    Each bracketed sign change of g is solved by safeguarded
+//    Newton-bisection on g itself, which doubles as the final polish.
+// 4. The first root with tmin < t <= tmax wins (all roots in the chord are
+//    isolated, so the tmin test is done in t, exactly). A grazing touch
+//    (g == 0 at a critical point) counts as a hit.
+// 5. surface: the stored point is re-projected onto the tube (nearest point
+//    of the core circle plus r along the radial direction) and the normal is
+//    that radial direction, which is parallel to the spec's gradient.
+#include <cmath>
+
+#include "prism/primitive_abi.h"
+#include "prism/sdk/math.hpp"
+#include "prism/sdk/primitive_sdk.hpp"
+
+namespace {
+
+using namespace prism::sdk;
+
+struct TorusRecord {
+  double major;  // R
+  double minor;  // r
+  double pad[2];
+};
+static_assert(sizeof(TorusRecord) % 16 == 0);
+
+const PrismField kFields[] = {
+    positive_length("major_radius", 1, "distance from the axis to the tube's centre circle (R)"),
+    positive_length("minor_radius", 1, "radius of the tube (r), 0 < r < R"),
+};
+
+int validate(const double* values, PrismError* err) {
+  if (values[1] < values[0]) return 0;
+  return fail(err, "minor_radius", "must be < major_radius (%s), got %s", format_number(values[0]).text,
+              format_number(values[1]).text);
+}
+
+void pack(const double* values, void* record) {
+  *static_cast<TorusRecord*>(record) = TorusRecord{values[0], values[1], {0.0, 0.0}};
+}
+
+int bounds(const void* record, double lo[3], double hi[3]) {
+  const auto& rec = record_of<TorusRecord>(record);
+  double outer = rec.major + rec.minor;
+  const double extent[3] = {outer, rec.minor, outer};
+  for (int i = 0; i < 3; ++i) {
+    lo[i] = -extent[i];
+    hi[i] = extent[i];
+  }
+  return 1;
+}
+
+// The ray in the scaled frame: p(s) = u + s d, torus with R = 1, tube rho.
+struct ScaledRay {
+  glm::dvec3 u, d;
+  double rho;
+};
+
+// Signed distance to the tube and its derivative along the ray.
+void tube_distance(const ScaledRay& ray, double s, double& g, double& dg) {
+  glm::dvec3 p = ray.u + s * ray.d;
+  double radial = std::sqrt(p.x * p.x + p.z * p.z);
+  double q = radial - 1.0;
+  double dist = std::sqrt(q * q + p.y * p.y);
+  g = dist - ray.rho;
+  // d(radial)/ds is undefined on the axis; NaN sends the solver to bisection.
+  double dradial = (p.x * ray.d.x + p.z * ray.d.z) / radial;
+  dg = (q * dradial + p.y * ray.d.y) / dist;
+}
+
+// Monic quartic s^4 + c[3] s^3 + c[2] s^2 + c[1] s + c[0] of the torus along
+// the scaled ray; only its derivatives are used (for critical points).
+struct Quartic {
+  double c[4];
+  double d1(double s) const { return ((4.0 * s + 3.0 * c[3]) * s + 2.0 * c[2]) * s + c[1]; }
+  double d2(double s) const { return (12.0 * s + 6.0 * c[3]) * s + 2.0 * c[2]; }
+};
+
+Quartic torus_quartic(const ScaledRay& ray) {
+  const glm::dvec3& u = ray.u;
+  const glm::dvec3& d = ray.d;
+  double e = glm::dot(u, d);
+  double k = glm::dot(u, u) + 1.0 - ray.rho * ray.rho;
+  double dxz = d.x * d.x + d.z * d.z, exz = u.x * d.x + u.z * d.z, gxz = u.x * u.x + u.z * u.z;
+  // (s^2 + 2es + k)^2 - 4 (dxz s^2 + 2 exz s + gxz), d unit.
+  return Quartic{{k * k - 4.0 * gxz, 4.0 * e * k - 8.0 * exz, 4.0 * e * e + 2.0 * k - 4.0 * dxz, 4.0 * e}};
+}
+
+// Sorted points splitting [-h, h] into pieces where f is monotone.
+int monotone_breaks(const Quartic& f, double h, double out[5]) {
+  double b2[4] = {-h, 0.0, 0.0, h};
+  int n2 = 1, n = 0;
+  double r0 = 0.0, r1 = 0.0;
+  int roots = solve_quadratic(12.0, 6.0 * f.c[3], 2.0 * f.c[2], r0, r1);
+  for (double r : {r0, r1})
+    if (roots == 2 && r > -h && r < h) b2[n2++] = r;
+  b2[n2++] = h;
+  out[n++] = -h;
+  auto d1 = [&](double s, double& v, double& dv) {
+    v = f.d1(s);
+    dv = f.d2(s);
+  };
+  for (int i = 0; i + 1 < n2; ++i) {
+    double a = b2[i], b = b2[i + 1], fa = f.d1(a), fb = f.d1(b);
+    if ((fa > 0.0) != (fb > 0.0)) out[n++] = solve_bracketed(d1, a, b, fa > 0.0, 1e-15 * (1.0 + std::abs(a)));
+  }
+  out[n++] = h;
+  return n;
+}
+
+int intersect(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit) {
+  const auto& rec = record_of<TorusRecord>(record);
+  const double big = rec.major;
+  glm::dvec3 o = load3(ray->origin), d = load3(ray->dir);
+  double tf = foot_parameter(o, d);
+  glm::dvec3 foot = o + tf * d;
+  glm::dvec3 perp = foot - glm::dot(foot, d) * d;
+  double bound = (rec.major + rec.minor) * (1.0 + 1e-3);  // slack: the outer equator touches R + r
+  double half2 = bound * bound - glm::dot(perp, perp);
+  if (!(half2 >= 0.0)) return 0;
+  double h = std::sqrt(half2) / big;
+  if (tf + big * h <= tmin || tf - big * h > tmax) return 0;
+
+  ScaledRay sr{foot / big, d, rec.minor / big};
+  double breaks[5];
+  int n = monotone_breaks(torus_quartic(sr), h, breaks);
+  auto g = [&](double s, double& v, double& dv) { tube_distance(sr, s, v, dv); };
+  double ga = 0.0, dga = 0.0;
+  g(breaks[0], ga, dga);
+  for (int i = 0; i + 1 < n; ++i) {
+    double a = breaks[i], b = breaks[i + 1], gb = 0.0, dgb = 0.0;
+    g(b, gb, dgb);
+    bool change = (ga > 0.0) != (gb > 0.0);
+    bool a_positive = ga > 0.0;
+    ga = gb;
+    if (!change || tf + big * b <= tmin) continue;
+    double s = solve_bracketed(g, a, b, a_positive, kEps * (1.0 + std::abs(b)));
+    double t = tf + big * s;
+    if (t > tmax) return 0;
+    if (!(t > tmin)) continue;
+    *hit = PrismHit{};
+    hit->t = t;
+    store3(foot + (big * s) * d, hit->data);
+    return 1;
+  }
+  return 0;
+}
+
+void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
+  const auto& rec = record_of<TorusRecord>(record);
+  glm::dvec3 p = load3(hit->data);
+  double radial = std::sqrt(p.x * p.x + p.z * p.z);
+  glm::dvec3 normal(0.0);
+  if (radial > 0.0) {
+    glm::dvec3 core(rec.major * p.x / radial, 0.0, rec.major * p.z / radial);
+    glm::dvec3 out_dir = p - core;
+    double len = glm::length(out_dir);
+    if (len > 0.0) {
+      normal = out_dir / len;
+      p = core + rec.minor * normal;
+    }
+  }
+  double u = turn_fraction(p.z, p.x);
+  double v = turn_fraction(p.y, std::sqrt(p.x * p.x + p.z * p.z) - rec.major);
+  write_surface(out, p, normal, u, v);
+}
+
+const PrismPrimitiveDesc kDesc = {
+    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
+    .desc_size = sizeof(PrismPrimitiveDesc),
+    .type_name = "torus",
+    .plugin_version = "1.0.0",
+    .flags = PRISM_PRIMITIVE_TRANSFORMABLE,
+    .field_count = sizeof(kFields) / sizeof(kFields[0]),
+    .fields = kFields,
+    .record_size = sizeof(TorusRecord),
+    .reserved = 0,
+    .validate = validate,
+    .pack = pack,
+    .bounds = bounds,
+    .intersect = intersect,
+    .intersect_batch = intersect_batch<intersect>,
+    .surface = surface,
+    .glsl_source = nullptr,
+    .glsl_prefix = nullptr,
+};
+
+}  // namespace
+
+extern "C" PRISM_EXPORT const PrismPrimitiveDesc* prism_primitive_entry(void) { return &kDesc; }

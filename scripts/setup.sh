@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Sets Prism up on a fresh Debian 12 machine: installs the Debian packages,
+# configures and builds (build/), and renders the showcase to out/showcase.png.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libglm-dev nlohmann-json3-dev libcli11-dev libfmt-dev
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake --build build -j"$(nproc)"
+
+mkdir -p out
+./build/bin/prism render scenes/showcase.json -b auto -o out/showcase.png --stats out/showcase-stats.json
+echo "rendered out/showcase.png"

@@ -1,0 +1,176 @@
+#include "cli_harness.hpp"
+
+#include "test_support.hpp"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+extern char** environ;
+
+namespace prism::cli_test {
+
+std::ostream& operator<<(std::ostream& os, const RunResult& r) {
+  os << "$ " << r.command << "\n";
+  if (r.exited)
+    os << "exit status " << r.status << "\n";
+  else
+    os << "killed by signal " << r.signal << " (" << strsignal(r.signal) << ")\n";
+  os << "--- stdout ---\n" << r.out << "--- stderr ---\n" << r.err << "--------------\n";
+  return os;
+}
+
+fs::path prism_binary() { return fs::path(PRISM_BINARY_DIR) / "bin" / "prism"; }
+fs::path default_plugin_folder() { return fs::path(PRISM_BINARY_DIR) / "lib" / "prism"; }
+fs::path bad_plugin_folder() { return fs::path(PRISM_CLI_BAD_PLUGIN_DIR); }
+
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_file(const fs::path& file, const std::string& contents) {
+  std::ofstream out(file, std::ios::binary);
+  out << contents;
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+std::vector<std::string> list_folder(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<std::string> backends_built() {
+  std::vector<std::string> names;
+  const std::string prefix = "libprism_backend_";
+  std::error_code ec;
+  for (fs::directory_iterator it(default_plugin_folder(), ec), end; !ec && it != end; it.increment(ec)) {
+    std::string file = it->path().filename().string();
+    if (file.rfind(prefix, 0) == 0 && it->path().extension() == ".so")
+      names.push_back(file.substr(prefix.size(), file.size() - prefix.size() - 3));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+void CliTest::SetUp() {
+  root_ = prism::test::fresh_temp_dir();
+  work_ = root_ / "work";
+  fs::create_directories(work_);
+  ASSERT_TRUE(fs::exists(prism_binary())) << prism_binary() << " is not built";
+}
+
+void CliTest::TearDown() {
+  if (HasFailure()) {
+    std::printf("(kept the test folder %s)\n", root_.c_str());
+    return;
+  }
+  std::error_code ec;
+  fs::remove_all(root_, ec);
+}
+
+fs::path CliTest::write(const std::string& name, const std::string& contents) {
+  fs::path file = work_ / name;
+  write_file(file, contents);
+  return file;
+}
+
+RunResult CliTest::run(const std::vector<std::string>& args, std::optional<std::string> plugin_path) {
+  RunResult result;
+  const std::string binary = prism_binary().string();
+  std::vector<std::string> argv_text = {binary};
+  argv_text.insert(argv_text.end(), args.begin(), args.end());
+  for (const auto& a : argv_text) result.command += (result.command.empty() ? "" : " ") + a;
+
+  std::vector<std::string> env_text;
+  for (char** e = environ; *e; ++e)
+    if (std::strncmp(*e, "PRISM_PLUGIN_PATH=", 18) != 0) env_text.emplace_back(*e);
+  if (plugin_path) {
+    env_text.push_back("PRISM_PLUGIN_PATH=" + *plugin_path);
+    result.command = "PRISM_PLUGIN_PATH=" + *plugin_path + " " + result.command;
+  }
+
+  std::vector<char*> argv, envp;
+  for (auto& a : argv_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  const int n = ++runs_;
+  const fs::path out_file = root_ / ("stdout." + std::to_string(n)), err_file = root_ / ("stderr." + std::to_string(n));
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  pid_t pid = 0;
+  int rc = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    ADD_FAILURE() << "cannot start " << binary << ": " << std::strerror(rc);
+    return result;
+  }
+  int wstatus = 0;
+  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  result.exited = WIFEXITED(wstatus);
+  if (result.exited) result.status = WEXITSTATUS(wstatus);
+  if (WIFSIGNALED(wstatus)) result.signal = WTERMSIG(wstatus);
+  result.out = read_file(out_file);
+  result.err = read_file(err_file);
+  return result;
+}
+
+::testing::AssertionResult ExitedWith(const RunResult& r, int status) {
+  if (!r.exited) return ::testing::AssertionFailure() << "crashed, expected exit status " << status << "\n" << r;
+  if (r.status != status)
+    return ::testing::AssertionFailure() << "exit status " << r.status << ", expected " << status << "\n" << r;
+  return ::testing::AssertionSuccess();
+}
+
+bool contains_any(const std::string& text, const std::string& alternatives) {
+  size_t start = 0;
+  while (true) {
+    size_t bar = alternatives.find('|', start);
+    std::string part = alternatives.substr(start, bar == std::string::npos ? std::string::npos : bar - start);
+    if (text.find(part) != std::string::npos) return true;
+    if (bar == std::string::npos) return false;
+    start = bar + 1;
+  }
+}
+
+::testing::AssertionResult StderrHas(const RunResult& r, const std::vector<std::string>& parts) {
+  for (const auto& part : parts)
+    if (!contains_any(r.err, part))
+      return ::testing::AssertionFailure() << "stderr lacks \"" << part << "\"\n" << r;
+  return ::testing::AssertionSuccess();
+}
+
+std::string SceneText::text() const {
+  std::string out = "{\n";
+  auto member = [&](const char* key, const std::string& value) {
+    if (!value.empty()) out += std::string("  \"") + key + "\": " + value + ",\n";
+  };
+  member("prism", prism);
+  member("camera", camera);
+  member("image", image);
+  if (!extra.empty()) out += "  " + extra + ",\n";
+  member("lights", lights);
+  member("objects", objects);
+  if (out.size() >= 2 && out.compare(out.size() - 2, 2, ",\n") == 0) out.erase(out.size() - 2, 1);
+  return out + "}\n";
+}
+
+}  // namespace prism::cli_test

@@ -1,0 +1,134 @@
+#include "test_support.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sstream>
+
+#include "prism/scene_loader.hpp"
+
+namespace fs = std::filesystem;
+
+namespace prism::test {
+
+fs::path source_dir() { return PRISM_SOURCE_DIR; }
+fs::path binary_dir() { return PRISM_BINARY_DIR; }
+
+const std::vector<std::string>& backend_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> found = Registry().backend_names_found();
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    return found;
+  }();
+  return names;
+}
+
+std::vector<std::string> required_backends() {
+  std::vector<std::string> names;
+  const char* env = std::getenv("PRISM_REQUIRE_BACKENDS");
+  std::stringstream list(env ? env : "");
+  for (std::string name; std::getline(list, name, ',');) {
+    name.erase(0, name.find_first_not_of(" \t"));
+    name.erase(name.find_last_not_of(" \t") + 1);
+    if (!name.empty()) names.push_back(name);
+  }
+  return names;
+}
+
+bool backend_required(const std::string& name) {
+  const auto required = required_backends();
+  return std::find(required.begin(), required.end(), name) != required.end();
+}
+
+std::string backend_param_name(const testing::TestParamInfo<std::string>& info) {
+  std::string name = info.param;
+  for (char& c : name) {
+    const bool alnum = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
+    if (!alnum) c = '_';
+  }
+  return name;
+}
+
+fs::path fresh_temp_dir() {
+  const auto* info = testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = "prism_" + std::to_string(getpid());
+  if (info) name += std::string("_") + info->test_suite_name() + "_" + info->name();
+  for (char& c : name) {
+    if (c == '/') c = '_';
+  }
+  const fs::path dir = fs::path(testing::TempDir()) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::vector<std::string> backends_except(const std::string& name) {
+  std::vector<std::string> names = backend_names();
+  names.erase(std::remove(names.begin(), names.end(), name), names.end());
+  return names;
+}
+
+bool require_backend_or_skip(const std::string& name) {
+  // Probing can be slow (a GPU backend opens a device): once per backend per process.
+  static Registry registry;
+  static std::map<std::string, std::string> why_not;  // backend -> "" when usable
+  auto it = why_not.find(name);
+  if (it == why_not.end()) {
+    std::string reason;
+    try {
+      const PrismBackendProbe probe = registry.backend(name)->probe();
+      if (!probe.usable) {
+        reason = "cannot run here: " + std::string(probe.reason, strnlen(probe.reason, sizeof probe.reason));
+      }
+    } catch (const std::exception& e) {
+      reason = std::string("does not load: ") + e.what();
+    }
+    it = why_not.emplace(name, reason).first;
+  }
+  const std::string& reason = it->second;
+  if (reason.empty()) return true;
+  if (backend_required(name) || reason.rfind("does not load", 0) == 0) {
+    const std::string message = "backend '" + name + "' " + reason +
+                                (backend_required(name) ? " (it is in PRISM_REQUIRE_BACKENDS)" : "");
+    // FAIL() without its `return`: a fatal failure, so a fixture's SetUp skips the body.
+    GTEST_MESSAGE_(message.c_str(), testing::TestPartResult::kFatalFailure);
+  } else {
+    const std::string message = "backend '" + name + "' " + reason;
+    GTEST_MESSAGE_(message.c_str(), testing::TestPartResult::kSkip);  // GTEST_SKIP() without its `return`
+  }
+  return false;
+}
+
+void BackendTest::SetUp() {
+  const std::string& name = GetParam();
+  if (!require_backend_or_skip(name)) return;
+  plugin_ = registry_.backend(name);
+}
+
+Scene BackendTest::load(const std::string& json, const fs::path& base_dir) {
+  return load_scene_from_string(json, base_dir, registry_, "<test scene>");
+}
+
+Image BackendTest::render(const Scene& scene, const RenderSettings& settings) {
+  std::unique_ptr<Backend> backend = plugin_->create();
+  backend->prepare(scene);
+  return backend->render(settings);
+}
+
+Image BackendTest::render(const Scene& scene) {
+  RenderSettings settings;
+  settings.image = scene.image;
+  return render(scene, settings);
+}
+
+std::vector<TraceResult> BackendTest::trace(const Scene& scene, std::span<const TraceQuery> rays) {
+  std::unique_ptr<Backend> backend = plugin_->create();
+  backend->prepare(scene);
+  return backend->trace(rays);
+}
+
+}  // namespace prism::test

@@ -1,0 +1,78 @@
+// Shared test helpers: the backends a test program runs against, and a
+// fixture that skips (or, for a required backend, fails) where a backend
+// cannot run on this machine.
+//
+// A test parameterised over backends:
+//
+//   class MyTest : public prism::test::BackendTest {};
+//   TEST_P(MyTest, Case) { Scene s = load(R"({...})"); Image im = render(s); ... }
+//   PRISM_INSTANTIATE_BACKEND_TESTS(MyTest);
+//
+// PRISM_REQUIRE_BACKENDS (comma-separated names) turns "cannot run here"
+// from a skip into a failure for the named backends, and makes a named
+// backend that is not found at all fail BackendDiscovery tests.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "prism/backend.hpp"
+#include "prism/registry.hpp"
+#include "prism/scene.hpp"
+
+namespace prism::test {
+
+std::filesystem::path source_dir();  // the repository root
+std::filesystem::path binary_dir();  // the build tree
+
+// Backend names the registry finds on its default search path, read once.
+const std::vector<std::string>& backend_names();
+
+// The names in PRISM_REQUIRE_BACKENDS (empty entries dropped).
+std::vector<std::string> required_backends();
+bool backend_required(const std::string& name);
+
+// backend_names() without `name` (e.g. every backend to compare with "reference").
+std::vector<std::string> backends_except(const std::string& name);
+
+// Loads and probes backend `name`. Returns true when it can run here. Otherwise
+// it records a skip (or, for a name in PRISM_REQUIRE_BACKENDS or a backend that
+// does not load, a failure) and returns false. gtest skips and fatal failures
+// in a helper do not leave the calling test, so call it as
+//   if (!prism::test::require_backend_or_skip(name)) return;
+bool require_backend_or_skip(const std::string& name);
+
+// A gtest-safe parameter name: the backend name with anything but [A-Za-z0-9] as '_'.
+std::string backend_param_name(const testing::TestParamInfo<std::string>& info);
+
+// A new, empty folder for this test's files (unique per process and test).
+std::filesystem::path fresh_temp_dir();
+
+// Fixture for tests run once per backend. SetUp loads and probes the backend.
+class BackendTest : public testing::TestWithParam<std::string> {
+ protected:
+  void SetUp() override;
+
+  // Parses a scene; relative texture paths resolve against `base_dir`.
+  Scene load(const std::string& json, const std::filesystem::path& base_dir = ".");
+  // A fresh backend prepared for `scene`, rendering with `settings` (default: the scene's image).
+  Image render(const Scene& scene, const RenderSettings& settings);
+  Image render(const Scene& scene);
+  std::vector<TraceResult> trace(const Scene& scene, std::span<const TraceQuery> rays);
+
+  Registry registry_;  // declared first: outlives every plugin object made from it
+
+ private:
+  std::shared_ptr<const BackendPlugin> plugin_;
+};
+
+}  // namespace prism::test
+
+#define PRISM_INSTANTIATE_BACKEND_TESTS(suite)                                              \
+  INSTANTIATE_TEST_SUITE_P(Backends, suite, testing::ValuesIn(prism::test::backend_names()), \
+                           prism::test::backend_param_name)
