@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include "prism/backend.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene_loader.hpp"
@@ -17,6 +19,15 @@ namespace {
 
 double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// CPU time of the whole process (all threads), ms: less sensitive than wall
+// time to other load on the machine.
+double cpu_ms() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  const auto ms = [](const timeval& t) { return t.tv_sec * 1e3 + t.tv_usec * 1e-3; };
+  return ms(usage.ru_utime) + ms(usage.ru_stime);
 }
 
 int usage(const char* argv0) {
@@ -58,11 +69,13 @@ int main(int argc, char** argv) {
     if (width > 0) settings.image.width = width;
     if (height > 0) settings.image.height = height;
     prism::check_image_settings(settings.image, "command line");
-    std::vector<double> renders;
+    std::vector<double> renders, cpu;
     for (int i = 0; i < repeat; ++i) {
       start = std::chrono::steady_clock::now();
+      const double cpu_start = cpu_ms();
       backend->render(settings);
       renders.push_back(ms_since(start));
+      cpu.push_back(cpu_ms() - cpu_start);
     }
     const auto stats = backend->stats();
     std::printf("scene %s: %zu objects, backend %s, %dx%d spp %d\n", scene_path.c_str(), scene.objects.size(),
@@ -72,7 +85,9 @@ int main(int argc, char** argv) {
     std::printf("render ms:");
     for (double ms : renders) std::printf(" %.1f", ms);
     std::sort(renders.begin(), renders.end());
-    std::printf("  median %.1f  rays/render %.0f\n", renders[renders.size() / 2], double(stats.rays) / repeat);
+    std::sort(cpu.begin(), cpu.end());
+    std::printf("  median %.1f (cpu %.1f)  rays/render %.0f\n", renders[renders.size() / 2], cpu[cpu.size() / 2],
+                double(stats.rays) / repeat);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

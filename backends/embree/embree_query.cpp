@@ -270,6 +270,8 @@ void EmbreeQuery::build(Device& device) {
 bool EmbreeQuery::clip(const Ray& ray, double& t0, double& t1) const {
   t0 = -std::numeric_limits<double>::infinity();
   t1 = std::numeric_limits<double>::infinity();
+  // A NaN or infinite ray never reaches Embree (its float rays must be finite).
+  if (!std::isfinite(max_abs(ray.origin) + max_abs(ray.dir))) return false;
   const glm::dvec3 o = ray.origin - frame_.center;
   for (int a = 0; a < 3; ++a) {
     const double b = frame_.half[a] + 2.0 * frame_.pad;
@@ -284,7 +286,7 @@ bool EmbreeQuery::clip(const Ray& ray, double& t0, double& t1) const {
     t0 = std::max(t0, near);
     t1 = std::min(t1, far);
   }
-  return t0 <= t1;  // false for NaN too
+  return t0 <= t1;
 }
 
 bool EmbreeQuery::shift_is_exact_enough(const Ray& ray, double shift) const {

@@ -226,6 +226,37 @@ TEST(EmbreeQuery, EqualTBetweenBvhAndBruteForceObjects) {
   }
 }
 
+// 300 overlapping rings in the plane y = 0.5 (their hits share one t
+// exactly, whatever their centre and radius) in different BVH leaves: when
+// the first ring found is not the lowest id, the lower one must still be
+// visited, so Embree's tfar must not drop below the tie.
+TEST(EmbreeQuery, EqualTOnCoplanarRingsGoesToTheLowerId) {
+  REQUIRE_PRIMITIVE("ring");
+  Rng rng(15);
+  std::string json;
+  for (int i = 0; i < 300; ++i) {
+    json += (i ? "," : "") + std::string(R"({"type": "ring", "center": )") +
+            vec(uniform(rng, -10, 10), 0.5, uniform(rng, -10, 10)) + ", \"inner_radius\": " +
+            num(uniform(rng, 0, 0.5)) + ", \"outer_radius\": " + num(uniform(rng, 1, 3)) + "}";
+  }
+  const Scene scene = load(json);
+  const EmbreeQuery query(scene, device());
+  int ties = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Ray ray{glm::dvec3(uniform(rng, -12, 12), uniform(rng, 1, 20), uniform(rng, -12, 12)),
+                  glm::normalize(glm::dvec3(uniform(rng, -0.5, 0.5), -1, uniform(rng, -0.5, 0.5)))};
+    const Hit want = brute_closest(scene, ray, 0.0);
+    const Hit got = query.closest(ray, 0.0);
+    ASSERT_EQ(got.id, want.id) << "ray " << i;
+    ASSERT_EQ(got.t, want.t) << "ray " << i;
+    ties += std::ranges::count_if(scene.objects, [&](const Object& object) {
+              PrismHit hit;
+              return want.found() && intersect_object(object, ray, 0.0, want.t, hit) && hit.t == want.t;
+            }) > 1;
+  }
+  EXPECT_GT(ties, 1000);
+}
+
 struct Ball {
   glm::dvec3 center;
   double radius;
@@ -322,6 +353,20 @@ TEST(EmbreeQuery, ScenesWithoutBoundedObjects) {
   EXPECT_EQ(hit.t, 5.0);
   EXPECT_TRUE(query.occluded(Ray{glm::dvec3(0), glm::dvec3(0, 0, 1)}, 6.0));
   EXPECT_FALSE(query.occluded(Ray{glm::dvec3(0), glm::dvec3(0, 0, 1)}, 5.0));
+}
+
+TEST(EmbreeQuery, NonFiniteRaysFindNothing) {
+  REQUIRE_PRIMITIVE("sphere");
+  Rng rng(14);
+  const Scene scene = load(random_objects_json(rng, {"sphere"}, 20));
+  const EmbreeQuery query(scene, device());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Ray& ray : {Ray{glm::dvec3(nan, 0, 0), glm::dvec3(0, 0, 1)}, Ray{glm::dvec3(0), glm::dvec3(nan, 0, 0)},
+                         Ray{glm::dvec3(0, 0, -kInfinity), glm::dvec3(0, 0, 1)}}) {
+    EXPECT_FALSE(query.closest(ray, 0.0).found());
+    EXPECT_FALSE(query.occluded(ray, kInfinity));
+  }
+  EXPECT_NO_THROW(device().check("non-finite rays"));
 }
 
 TEST(EmbreeDevice, EmbreeErrorsBecomeRuntimeErrors) {

@@ -1,6 +1,5 @@
 #include "prism/image_io.hpp"
 
-#include <OpenImageIO/imageio.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,6 +7,7 @@
 #include <fstream>
 
 #include "prism/errors.hpp"
+#include "prism/image_file.hpp"
 #include "prism/texture.hpp"
 
 namespace fs = std::filesystem;
@@ -45,22 +45,15 @@ void write_atomically(const fs::path& file, WriteFn write) {
   }
 }
 
-void write_oiio(const fs::path& path, const OIIO::ImageSpec& spec, const void* pixels) {
-  auto out = OIIO::ImageOutput::create(path.string());
-  if (!out) throw RuntimeError("cannot write " + path.string() + ": " + OIIO::geterror());
-  if (!out->open(path.string(), spec) || !out->write_image(spec.format, pixels) || !out->close())
-    throw RuntimeError("cannot write " + path.string() + ": " + out->geterror());
-}
-
 void write_png(const Image& image, const fs::path& path) {
-  std::vector<uint8_t> bytes(image.rgb.size());
-  for (size_t i = 0; i < bytes.size(); ++i) {
+  ImageFile file{image.width, image.height, 3, {}, PixelFormat::UInt8, {}};
+  file.pixels.resize(image.rgb.size());
+  for (size_t i = 0; i < file.pixels.size(); ++i) {
+    // round(255 * oetf(clamp(v))) exactly, so the writer's own quantisation is a no-op.
     double v = std::clamp(double(image.rgb[i]), 0.0, 1.0);
-    bytes[i] = static_cast<uint8_t>(std::lround(255.0 * linear_to_srgb(v)));
+    file.pixels[i] = static_cast<float>(std::lround(255.0 * linear_to_srgb(v)) / 255.0);
   }
-  OIIO::ImageSpec spec(image.width, image.height, 3, OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", "sRGB");
-  write_oiio(path, spec, bytes.data());
+  write_image_file(path, file, PixelFormat::UInt8);
 }
 
 void write_exr(const Image& image, const fs::path& path) {
@@ -68,18 +61,16 @@ void write_exr(const Image& image, const fs::path& path) {
   if (!image.id.empty()) names.push_back("id");
   if (!image.path.empty()) names.push_back("path");
   const size_t channels = names.size(), pixels = size_t(image.width) * image.height;
-  std::vector<float> data(pixels * channels);
+  ImageFile file{image.width, image.height, int(channels), names, PixelFormat::Float, {}};
+  file.pixels.resize(pixels * channels);
   for (size_t p = 0; p < pixels; ++p) {
-    float* out = &data[p * channels];
+    float* out = &file.pixels[p * channels];
     std::copy_n(&image.rgb[p * 3], 3, out);
     size_t c = 3;
     if (!image.id.empty()) out[c++] = image.id[p];
     if (!image.path.empty()) out[c++] = image.path[p];
   }
-  OIIO::ImageSpec spec(image.width, image.height, int(channels), OIIO::TypeDesc::FLOAT);
-  spec.channelnames = names;
-  spec.attribute("compression", "zip");
-  write_oiio(path, spec, data.data());
+  write_image_file(path, file, PixelFormat::Float);
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 
 #include "prism/errors.hpp"
@@ -67,6 +68,24 @@ class DuplicateKeyCheck {
   std::string key_;
 };
 
+// "line L, column C: 1e999 " for the first number literal named in an
+// overflow message ("number overflow parsing '1e999'").
+std::string locate_overflow(const std::string& text, const std::string& message) {
+  auto open = message.find('\'');
+  auto close = message.rfind('\'');
+  if (open == std::string::npos || close <= open) return "";
+  const std::string literal = message.substr(open + 1, close - open - 1);
+  auto is_number_char = [](char c) { return std::isdigit(static_cast<unsigned char>(c)) || std::strchr("+-.eE", c); };
+  for (size_t at = text.find(literal); at != std::string::npos; at = text.find(literal, at + 1)) {
+    const bool starts = at == 0 || !is_number_char(text[at - 1]);
+    const bool ends = at + literal.size() >= text.size() || !is_number_char(text[at + literal.size()]);
+    if (!starts || !ends) continue;
+    auto [line, column] = line_and_column(text, at);
+    return "line " + std::to_string(line) + ", column " + std::to_string(column) + ": " + literal + " ";
+  }
+  return literal + " ";
+}
+
 void check_finite_numbers(const Json& value, const std::string& path) {
   if (value.is_number_float() && !std::isfinite(value.get<double>()))
     fail(path, "must be a finite number, got " + value.dump());
@@ -102,6 +121,9 @@ Json parse_strict(const std::string& text, const std::string& source_name) {
     root = Json::parse(text, std::ref(duplicates), /*allow_exceptions=*/true, /*ignore_comments=*/false);
   } catch (const InputError& e) {
     throw InputError(source_name + ": " + e.what());
+  } catch (const Json::out_of_range& e) {
+    // nlohmann reports a number like 1e999 this way, without a position.
+    throw InputError(source_name + ": " + locate_overflow(text, e.what()) + "must be a finite number");
   } catch (const Json::parse_error& e) {
     auto [line, column] = line_and_column(text, e.byte > 0 ? e.byte - 1 : 0);
     std::string what = e.what();
@@ -120,13 +142,16 @@ void fail(const std::string& path, const std::string& message) {
 
 std::string format_number(double value) {
   char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.17g", value);
-  std::string shortest = buffer;
-  for (int digits = 1; digits < 17; ++digits) {  // the shortest text that reads back the same
-    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
-    if (std::strtod(buffer, nullptr) == value) return buffer;
+  // Whole numbers of moderate size read best as integers: 180, 10000000.
+  if (std::isfinite(value) && value == std::floor(value) && std::abs(value) < 1e15) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", value);
+    return buffer;
   }
-  return shortest;
+  for (int digits = 1; digits <= 17; ++digits) {  // the shortest text that reads back the same
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
+  return buffer;
 }
 
 std::string describe(const Json& value) {
@@ -136,7 +161,10 @@ std::string describe(const Json& value) {
     case Json::value_t::string: return "a string";
     case Json::value_t::array: return "an array of " + std::to_string(value.size());
     case Json::value_t::object: return "an object";
-    case Json::value_t::number_float: return format_number(value.get<double>());
+    case Json::value_t::number_float: {  // written with a point or exponent: show it as a non-integer
+      std::string text = format_number(value.get<double>());
+      return text.find_first_of(".e") == std::string::npos ? text + ".0" : text;
+    }
     default: return value.dump();
   }
 }
@@ -199,9 +227,38 @@ void ObjectReader::know(const std::string& key) {
 
 bool ObjectReader::has(const std::string& key) const { return value_.contains(key); }
 
+namespace {
+
+// Levenshtein distance, to tell a misspelt key from a missing one.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+void ObjectReader::fail_missing(const std::string& key) const {
+  // A required key missing beside an unknown key that looks like it is a typo: name the typo.
+  for (auto it = value_.begin(); it != value_.end(); ++it) {
+    if (std::find(known_.begin(), known_.end(), it.key()) == known_.end() && edit_distance(it.key(), key) <= 2)
+      fail(path_of(it.key()), "unknown key (did you mean '" + key + "'?)");
+  }
+  fail(path_of(key), "required key is missing");
+}
+
 const Json& ObjectReader::at(const std::string& key) {
   know(key);
-  if (!value_.contains(key)) fail(path_of(key), "required key is missing");
+  if (!value_.contains(key)) fail_missing(key);
   return value_.at(key);
 }
 

@@ -60,6 +60,8 @@ class ObjectReader {
   const Json& at(const std::string& key);           // required: error when missing
   const Json* find(const std::string& key);         // optional: nullptr when missing
   void require_absent(const std::string& key, const std::string& why);
+  // Reports a missing required key (or the misspelling standing in its place).
+  [[noreturn]] void fail_missing(const std::string& key) const;
 
   double number(const std::string& key, double fallback, Range range = kAny);
   double required_number(const std::string& key, Range range = kAny);

@@ -54,7 +54,7 @@ void read_field(json::ObjectReader& r, const PrismField& f, std::vector<double>&
   const std::string path = r.path_of(f.name);
   const Json* v = r.find(f.name);
   if (!v) {
-    if ((f.flags & PRISM_FIELD_REQUIRED) || !f.defaults) json::fail(path, "required key is missing");
+    if ((f.flags & PRISM_FIELD_REQUIRED) || !f.defaults) r.fail_missing(f.name);
     values.insert(values.end(), f.defaults, f.defaults + f.count);
     return;
   }

@@ -177,6 +177,8 @@ static std::shared_ptr<const Plugin> load_first(const std::vector<fs::path>& fil
     auto plugin = loader(file, error);
     if (plugin && plugin->name() == name) return plugin;
     if (plugin) error = "it declares " + what + " '" + plugin->name() + "', not '" + name + "'";
+    // dlerror() already starts with the file name; say it once.
+    if (error.rfind(file.string() + ": ", 0) == 0) error.erase(0, file.string().size() + 2);
     failures.push_back(file.string() + ": " + error);
   }
   return nullptr;

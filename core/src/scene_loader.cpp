@@ -194,7 +194,8 @@ Scene read_scene(const Json& root, const std::filesystem::path& base_dir, Regist
   ObjectReader r(root, "");
   Scene scene;
   const Json& version = r.at("prism");
-  if (!version.is_number_integer() || version.get<long long>() != 1)
+  if (!version.is_number_integer()) json::fail("prism", "must be the integer 1, got " + json::describe(version));
+  if (version.get<long long>() != 1)
     json::fail("prism", "unsupported format version " + json::describe(version) + " (this build reads 1)");
   scene.camera = read_camera(r.at("camera"));
   scene.image = read_image(r.find("image"));

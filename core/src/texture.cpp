@@ -1,11 +1,10 @@
 #include "prism/texture.hpp"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "prism/errors.hpp"
+#include "prism/image_file.hpp"
 
 namespace prism {
 
@@ -49,34 +48,19 @@ double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c 
 double linear_to_srgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
 
 Texture load_texture(const std::filesystem::path& path, bool srgb) {
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);  // the format wants straight alpha
-  auto input = OIIO::ImageInput::open(path.string(), &config);
-  if (!input) {
-    std::string why = OIIO::geterror();
-    throw InputError("cannot read image '" + path.string() + "'" + (why.empty() ? "" : ": " + why));
-  }
-  const OIIO::ImageSpec& spec = input->spec();
-  const int channels = std::min(spec.nchannels, 4);
-  if (spec.width <= 0 || spec.height <= 0 || channels <= 0)
-    throw InputError("image '" + path.string() + "' has no pixels");
-  if (size_t(spec.width) * size_t(spec.height) > (size_t(1) << 28))
-    throw InputError("image '" + path.string() + "' is larger than 2^28 pixels");
-  std::vector<float> pixels(size_t(spec.width) * spec.height * channels);
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw InputError("cannot decode image '" + path.string() + "': " + input->geterror());
+  ImageFile file = read_image_file(path);
+  const int channels = std::min(file.channels, 4);
   // 8- and 16-bit colour is sRGB-encoded unless the scene says otherwise; float formats are linear.
-  const bool integer_format = spec.format.basetype == OIIO::TypeDesc::UINT8 ||
-                              spec.format.basetype == OIIO::TypeDesc::UINT16;
+  const bool integer_format = file.format == PixelFormat::UInt8 || file.format == PixelFormat::UInt16;
   const bool decode = srgb && integer_format;
   const int colour_channels = (channels == 2 || channels == 4) ? channels - 1 : channels;
   Texture texture;
   texture.path = path;
-  texture.width = spec.width;
-  texture.height = spec.height;
-  texture.texels.resize(size_t(spec.width) * spec.height);
+  texture.width = file.width;
+  texture.height = file.height;
+  texture.texels.resize(size_t(file.width) * file.height);
   for (size_t i = 0; i < texture.texels.size(); ++i) {
-    float* p = &pixels[i * channels];
+    float* p = &file.pixels[i * size_t(file.channels)];
     if (decode)
       for (int c = 0; c < colour_channels; ++c) p[c] = static_cast<float>(srgb_to_linear(p[c]));
     texture.texels[i] = expand_channels(p, channels);

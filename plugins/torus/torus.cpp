@@ -16,15 +16,16 @@
 //    pieces, each holding at most one root. Critical points are well
 //    conditioned (f'' = O(1) there) even where f itself is not.
 // 3. Signs and roots come from the signed distance to the tube,
-//    g(s) = sqrt((rho - 1)^2 + y^2) - r/R, not from the expanded quartic: g
+//    g(s) = sqrt((sqrt(x^2 + z^2) - 1)^2 + y^2) - r/R, not from the expanded
+//    quartic: g
 //    has the same sign as f everywhere (f = A*B with A = dist^2 - (r/R)^2 and
 //    B > 0 for r < R), but no cancellation: for r/R = 1e-3 the quartic loses
 //    ~6 digits near the tube while g keeps full precision, and |g'| <= 1.
 //    Each bracketed sign change of g is solved by safeguarded
 //    Newton-bisection on g itself, which doubles as the final polish.
-// 4. The first root with tmin < t <= tmax wins (all roots in the chord are
-//    isolated, so the tmin test is done in t, exactly). A grazing touch
-//    (g == 0 at a critical point) counts as a hit.
+// 4. Pieces are visited in order and only as far as needed: the first root
+//    with tmin < t <= tmax wins, tested on t itself (not on a rounded s).
+//    A grazing touch (g == 0 at a critical point) counts as a hit.
 // 5. surface: the stored point is re-projected onto the tube (nearest point
 //    of the core circle plus r along the radial direction) and the normal is
 //    that radial direction, which is parallel to the spec's gradient.
@@ -71,10 +72,18 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return 1;
 }
 
-// The ray in the scaled frame: p(s) = u + s d, torus with R = 1, tube rho.
+// Newton stops once a step is below these (in units of R); the step just
+// taken leaves an error ~K * step^2, far below double resolution. A critical
+// point off by 1e-9 changes f's extremum by ~1e-18, so it still separates
+// any root pair that double precision can tell apart.
+constexpr double kCriticalTol = 1e-9;
+constexpr double kRootTol = 1e-12;
+
+// The ray in the scaled frame: p(s) = u + s d, torus with R = 1 and tube
+// radius `tube` = r/R.
 struct ScaledRay {
   glm::dvec3 u, d;
-  double rho;
+  double tube;
 };
 
 // Signed distance to the tube and its derivative along the ray.
@@ -83,7 +92,7 @@ void tube_distance(const ScaledRay& ray, double s, double& g, double& dg) {
   double radial = std::sqrt(p.x * p.x + p.z * p.z);
   double q = radial - 1.0;
   double dist = std::sqrt(q * q + p.y * p.y);
-  g = dist - ray.rho;
+  g = dist - ray.tube;
   // d(radial)/ds is undefined on the axis; NaN sends the solver to bisection.
   double dradial = (p.x * ray.d.x + p.z * ray.d.z) / radial;
   dg = (q * dradial + p.y * ray.d.y) / dist;
@@ -101,32 +110,76 @@ Quartic torus_quartic(const ScaledRay& ray) {
   const glm::dvec3& u = ray.u;
   const glm::dvec3& d = ray.d;
   double e = glm::dot(u, d);
-  double k = glm::dot(u, u) + 1.0 - ray.rho * ray.rho;
+  double k = glm::dot(u, u) + 1.0 - ray.tube * ray.tube;
   double dxz = d.x * d.x + d.z * d.z, exz = u.x * d.x + u.z * d.z, gxz = u.x * u.x + u.z * u.z;
   // (s^2 + 2es + k)^2 - 4 (dxz s^2 + 2 exz s + gxz), d unit.
   return Quartic{{k * k - 4.0 * gxz, 4.0 * e * k - 8.0 * exz, 4.0 * e * e + 2.0 * k - 4.0 * dxz, 4.0 * e}};
 }
 
-// Sorted points splitting [-h, h] into pieces where f is monotone.
-int monotone_breaks(const Quartic& f, double h, double out[5]) {
-  double b2[4] = {-h, 0.0, 0.0, h};
-  int n2 = 1, n = 0;
-  double r0 = 0.0, r1 = 0.0;
-  int roots = solve_quadratic(12.0, 6.0 * f.c[3], 2.0 * f.c[2], r0, r1);
-  for (double r : {r0, r1})
-    if (roots == 2 && r > -h && r < h) b2[n2++] = r;
-  b2[n2++] = h;
-  out[n++] = -h;
-  auto d1 = [&](double s, double& v, double& dv) {
+// Walks the chord's monotone pieces of f in order, given their ends one at a
+// time, and stops at the first root of g with tmin < t <= tmax.
+struct RootScan {
+  const ScaledRay& ray;
+  double tf, big, tmin, tmax;
+  double a = 0.0, ga = 0.0;  // the previous break and g there
+  bool done = false, found = false;
+  double root = 0.0;
+
+  double distance_at(double s) const {
+    double v = 0.0, dv = 0.0;
+    tube_distance(ray, s, v, dv);
+    return v;
+  }
+  void start(double s) {
+    a = s;
+    ga = distance_at(s);
+  }
+  // Closes the piece [a, b]: at most one root, solved only if g changes sign
+  // there and the piece reaches past tmin.
+  void advance(double b) {
+    if (done) return;
+    double a0 = a, g0 = ga, gb = distance_at(b);
+    a = b;
+    ga = gb;
+    if (tf + big * a0 > tmax) {
+      done = true;
+      return;
+    }
+    if ((g0 > 0.0) == (gb > 0.0) || tf + big * b <= tmin) return;
+    auto g = [this](double s, double& v, double& dv) { tube_distance(ray, s, v, dv); };
+    double s = solve_bracketed(g, a0, b, g0, gb, kRootTol * (1.0 + std::abs(b)));
+    double t = tf + big * s;
+    if (t > tmax) {
+      done = true;
+    } else if (t > tmin) {
+      done = found = true;
+      root = s;
+    }
+  }
+};
+
+// Feeds `scan` the critical points of f in [-h, h] in order, then h: the
+// roots of the quadratic f'' split the cubic f' into monotone pieces, and
+// each sign change of f' there is one critical point.
+void scan_monotone_pieces(const Quartic& f, double h, RootScan& scan) {
+  double r[2] = {0.0, 0.0};
+  int n = solve_quadratic(12.0, 6.0 * f.c[3], 2.0 * f.c[2], r[0], r[1]);
+  double ends[4] = {-h, 0.0, 0.0, 0.0};
+  int count = 1;
+  for (int i = 0; i < n; ++i)
+    if (r[i] > -h && r[i] < h) ends[count++] = r[i];
+  ends[count++] = h;
+  auto d1 = [&f](double s, double& v, double& dv) {
     v = f.d1(s);
     dv = f.d2(s);
   };
-  for (int i = 0; i + 1 < n2; ++i) {
-    double a = b2[i], b = b2[i + 1], fa = f.d1(a), fb = f.d1(b);
-    if ((fa > 0.0) != (fb > 0.0)) out[n++] = solve_bracketed(d1, a, b, fa > 0.0, 1e-15 * (1.0 + std::abs(a)));
+  scan.start(-h);
+  for (int i = 0; i + 1 < count && !scan.done; ++i) {
+    double a = ends[i], b = ends[i + 1], fa = f.d1(a), fb = f.d1(b);
+    if ((fa > 0.0) == (fb > 0.0)) continue;
+    scan.advance(solve_bracketed(d1, a, b, fa, fb, kCriticalTol * (1.0 + std::abs(a))));
   }
-  out[n++] = h;
-  return n;
+  scan.advance(h);
 }
 
 int intersect(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit) {
@@ -143,28 +196,13 @@ int intersect(const void* record, const PrismRay* ray, double tmin, double tmax,
   if (tf + big * h <= tmin || tf - big * h > tmax) return 0;
 
   ScaledRay sr{foot / big, d, rec.minor / big};
-  double breaks[5];
-  int n = monotone_breaks(torus_quartic(sr), h, breaks);
-  auto g = [&](double s, double& v, double& dv) { tube_distance(sr, s, v, dv); };
-  double ga = 0.0, dga = 0.0;
-  g(breaks[0], ga, dga);
-  for (int i = 0; i + 1 < n; ++i) {
-    double a = breaks[i], b = breaks[i + 1], gb = 0.0, dgb = 0.0;
-    g(b, gb, dgb);
-    bool change = (ga > 0.0) != (gb > 0.0);
-    bool a_positive = ga > 0.0;
-    ga = gb;
-    if (!change || tf + big * b <= tmin) continue;
-    double s = solve_bracketed(g, a, b, a_positive, kEps * (1.0 + std::abs(b)));
-    double t = tf + big * s;
-    if (t > tmax) return 0;
-    if (!(t > tmin)) continue;
-    *hit = PrismHit{};
-    hit->t = t;
-    store3(foot + (big * s) * d, hit->data);
-    return 1;
-  }
-  return 0;
+  RootScan scan{sr, tf, big, tmin, tmax};
+  scan_monotone_pieces(torus_quartic(sr), h, scan);
+  if (!scan.found) return 0;
+  *hit = PrismHit{};
+  hit->t = tf + big * scan.root;
+  store3(foot + (big * scan.root) * d, hit->data);
+  return 1;
 }
 
 void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {

@@ -244,6 +244,39 @@ TEST(TorusTest, RaysFromInsideTheTubeMatchSphereTracingOracle) {
   }
 }
 
+TEST(TorusTest, SecondaryRaysFromOffsetHitPointsMatchSphereTracingOracle) {
+  // Spec offsets P +- eps n with random directions: hits a few eps away (the
+  // tube itself again, seen from just outside or inside) must be as exact as
+  // far ones; a solver that stops on a bisection midpoint fails here.
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> angle(-kPi, kPi), u01(0.0, 1.0);
+  for (double minor : {0.5, 1e-2}) {
+    Shape s = torus(1.0, minor);
+    for (int i = 0; i < 400; ++i) {
+      double phi = angle(rng), theta = angle(rng);
+      dvec3 p = torus_point(1.0, minor, phi, theta), n = torus_normal(phi, theta);
+      dvec3 o = p + (u01(rng) < 0.5 ? 1.0 : -1.0) * spec_offset(p) * n, d = random_unit(rng);
+      Traced want = sphere_trace(o, d, 1.0, minor);
+      if (want.ambiguous) continue;
+      auto hit = s.intersect(o, d);
+      ASSERT_EQ(hit.has_value(), want.hit) << i;
+      if (hit) {
+        EXPECT_LT(rel_err(hit->t, (double)want.t), 1e-9) << i;
+      }
+    }
+  }
+}
+
+TEST(TorusTest, SdkBracketedSolverReturnsConvergedNewtonIterate) {
+  // g(s) = s^2 - 2 on [1, 2]: converged, not a bracket midpoint.
+  auto g = [](double s, double& v, double& dv) {
+    v = s * s - 2.0;
+    dv = 2.0 * s;
+  };
+  double root = prism::sdk::solve_bracketed(g, 1.0, 2.0, -1.0, 2.0, 1e-12);
+  EXPECT_NEAR(root, std::sqrt(2.0), 4e-16);
+}
+
 TEST(TorusTest, SurfacePointIsOnTheTubeAcrossScales) {
   std::mt19937_64 rng(14);
   std::uniform_real_distribution<double> angle(-kPi, kPi);

@@ -2,9 +2,9 @@
 // names must give exit status 2, a message with the JSON path (or line and
 // column) and what is wrong, and no output file. Each bad scene is given to
 // both `prism render` and `prism trace`.
-#include <OpenImageIO/imageio.h>
+#include "prism/image_file.hpp"
 
-#include <functional>
+#include <algorithm>
 
 #include "cli_harness.hpp"
 
@@ -343,15 +343,10 @@ TEST_F(ValidScene, ValuesAtTheLimitsAreAccepted) {
 
 // ---------------------------------------------------------------- textures
 
-// Writes a w x h RGB PNG of one grey level with OpenImageIO.
+// Writes a w x h RGB PNG of one grey level (128) through the core's image module.
 void write_png(const fs::path& file, int w, int h) {
-  std::vector<unsigned char> pixels(size_t(w) * h * 3, 128);
-  auto out = OIIO::ImageOutput::create(file.string());
-  ASSERT_TRUE(out) << OIIO::geterror();
-  OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-  ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
-  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::UINT8, pixels.data())) << out->geterror();
-  ASSERT_TRUE(out->close());
+  prism::ImageFile image{w, h, 3, {}, prism::PixelFormat::UInt8, std::vector<float>(size_t(w) * h * 3, 128.0f / 255.0f)};
+  prism::write_image_file(file, image, prism::PixelFormat::UInt8);
 }
 
 class TextureErrors : public CliTest {

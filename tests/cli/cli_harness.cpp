@@ -1,7 +1,5 @@
 #include "cli_harness.hpp"
 
-#include "test_support.hpp"
-
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -13,6 +11,8 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+
+#include "test_support.hpp"
 
 extern char** environ;
 

@@ -1,6 +1,6 @@
 #include "shading_support.hpp"
 
-#include <OpenImageIO/imageio.h>
+#include "prism/image_file.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -43,30 +43,54 @@ testing::AssertionResult pixel_near(const Image& image, int i, int j, glm::dvec3
 
 namespace {
 
-void write_image(const std::filesystem::path& file, const OIIO::ImageSpec& spec, const void* data) {
-  auto out = OIIO::ImageOutput::create(file.string());
-  ASSERT_TRUE(out) << "cannot write " << file << ": " << OIIO::geterror();
-  ASSERT_TRUE(out->open(file.string(), spec)) << out->geterror();
-  ASSERT_TRUE(out->write_image(spec.format, data)) << out->geterror();
-  ASSERT_TRUE(out->close()) << out->geterror();
+// Writes `values` (already in the file's units: 0..255, 0..65535 or linear
+// floats) through the core's image module, which stores them unchanged.
+template <typename T>
+void write_file(const std::filesystem::path& file, int width, int height, int channels, PixelFormat format,
+                const std::vector<T>& values, double scale) {
+  ASSERT_EQ(values.size(), static_cast<size_t>(width) * height * channels);
+  ImageFile image{width, height, channels, {}, format, {}};
+  for (T v : values) image.pixels.push_back(static_cast<float>(double(v) / scale));
+  ASSERT_NO_THROW(write_image_file(file, image, format));
 }
 
 }  // namespace
 
 void write_exr(const std::filesystem::path& file, int width, int height, int channels,
                const std::vector<float>& values) {
-  ASSERT_EQ(values.size(), static_cast<size_t>(width) * height * channels);
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::FLOAT);
-  write_image(file, spec, values.data());
+  write_file(file, width, height, channels, PixelFormat::Float, values, 1.0);
 }
 
 void write_png8(const std::filesystem::path& file, int width, int height, int channels,
                 const std::vector<unsigned char>& bytes) {
-  ASSERT_EQ(bytes.size(), static_cast<size_t>(width) * height * channels);
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  // The bytes are unassociated already: OIIO must not divide them by alpha.
-  spec.attribute("oiio:UnassociatedAlpha", 1);
-  write_image(file, spec, bytes.data());
+  write_file(file, width, height, channels, PixelFormat::UInt8, bytes, 255.0);
+}
+
+void write_png16(const std::filesystem::path& file, int width, int height, int channels,
+                 const std::vector<uint16_t>& values) {
+  write_file(file, width, height, channels, PixelFormat::UInt16, values, 65535.0);
+}
+
+void GridTextureTest::SetUp() {
+  BackendTest::SetUp();
+  if (IsSkipped() || HasFatalFailure()) return;
+  dir_ = fresh_temp_dir();
+  std::vector<float> texels;
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) texels.insert(texels.end(), {(i + 1) / 8.0f, (j + 1) / 8.0f, (i + 4 * j) / 16.0f});
+  }
+  write_exr(dir_ / "grid.exr", 4, 4, 3, texels);
+}
+
+Image GridTextureTest::render_grid(const std::string& camera, const std::string& material_extra,
+                                   const std::string& object) {
+  return render(load(R"({"prism": 1, "camera": )" + camera + R"(,
+    "image": {"width": 1, "height": 1},
+    "ambient": [1, 1, 1],
+    "textures": {"grid": "grid.exr"},
+    "materials": {"m": {"color": [1, 1, 1], "texture": "grid")" + material_extra + R"(}},
+    "objects": [)" + object + "]}",
+                     dir_));
 }
 
 }  // namespace prism::test

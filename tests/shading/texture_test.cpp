@@ -1,44 +1,16 @@
-// Texture decoding and lookup, the uv of each primitive, and the skybox.
-// Textured surfaces are lit by ambient 1 only, so a pixel equals c = tex.rgb.
-#include <array>
+// Texture decoding (sRGB, alpha, channel counts, 16 bit), bilinear lookup with
+// repeat, and the uv of boxes, planes and spheres. Textured surfaces are lit by
+// ambient 1 only, so a pixel equals c = tex.rgb.
 
 #include "shading_support.hpp"
 
 namespace prism::test {
 namespace {
 
-// A 4x4 EXR whose texel (column i, row j) is
-//   ((i+1)/8, (j+1)/8, (i + 4j)/16), all exact in float.
-// A uv' landing on a texel centre, ((i+0.5)/4, (j+0.5)/4), gives x = u'*4 - 0.5 = i
-// and y = j exactly: bilinear weight 1 on texel (i, j).
-class TextureTest : public BackendTest {
- protected:
-  void SetUp() override {
-    BackendTest::SetUp();
-    if (IsSkipped() || HasFatalFailure()) return;
-    dir_ = fresh_temp_dir();
-    std::vector<float> texels;
-    for (int j = 0; j < 4; ++j) {
-      for (int i = 0; i < 4; ++i) {
-        texels.insert(texels.end(), {(i + 1) / 8.0f, (j + 1) / 8.0f, (i + 4 * j) / 16.0f});
-      }
-    }
-    write_exr(dir_ / "grid.exr", 4, 4, 3, texels);
-  }
-
-  // One pixel seen by `camera`, ambient 1, material "m" = grid texture + `material_extra`.
-  Image render_grid(const std::string& camera, const std::string& material_extra, const std::string& object) {
-    return render(load(R"({"prism": 1, "camera": )" + camera + R"(,
-      "image": {"width": 1, "height": 1},
-      "ambient": [1, 1, 1],
-      "textures": {"grid": "grid.exr"},
-      "materials": {"m": {"color": [1, 1, 1], "texture": "grid")" + material_extra + R"(}},
-      "objects": [)" + object + "]}",
-                       dir_));
-  }
-
-  std::filesystem::path dir_;
-};
+// The grid texture of GridTextureTest (shading_support.hpp): texel (i, j) =
+// ((i+1)/8, (j+1)/8, (i + 4j)/16); a uv' on a texel centre ((i+0.5)/4, (j+0.5)/4)
+// reads exactly texel (i, j).
+class TextureTest : public GridTextureTest {};
 
 constexpr const char* kUnitBox = R"({"type": "box", "half_size": [1, 1, 1], "material": "m"})";
 constexpr const char* kUnitSphere = R"({"type": "sphere", "radius": 1, "material": "m"})";
@@ -182,6 +154,19 @@ TEST_P(TextureTest, GreyAlphaPngChannels) {
   write_png8(dir_ / "ga.png", 1, 1, 2, {128, 64});
   EXPECT_TRUE(pixel_near(render(load(alpha_png_scene(R"({"path": "ga.png", "srgb": false})"), dir_)), 0, 0,
                          {0.275786236, 0.425590158, 0.725198001}));
+}
+
+TEST_P(TextureTest, SixteenBitPngIsSrgbDecodedToo) {
+  // One grey channel, 32768/65535 = 0.50000763: decoded with the sRGB curve,
+  // ((0.50000763 + 0.055)/1.055)^2.4 = 0.214048202 (all three channels).
+  write_png16(dir_ / "grey16.png", 1, 1, 1, {32768});
+  Scene scene = load(one_pixel_scene(R"(
+    "ambient": [1, 1, 1],
+    "textures": {"t": "grey16.png"},
+    "materials": {"m": {"color": [1, 1, 1], "texture": "t"}},
+    "objects": [{"type": "plane", "point": [0, 0, -5], "normal": [0, 0, 1], "material": "m"}])"),
+                     dir_);
+  EXPECT_TRUE(pixel_near(render(scene), 0, 0, {0.214048202, 0.214048202, 0.214048202}));
 }
 
 PRISM_INSTANTIATE_BACKEND_TESTS(TextureTest);

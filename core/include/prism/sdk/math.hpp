@@ -63,15 +63,19 @@ inline int solve_quadratic(double a, double b, double c, double& t0, double& t1)
   return 2;
 }
 
-// Safeguarded Newton-bisection for a root of fn in [a, b], where fn changes
-// sign between a and b: `a_positive` says which side a is on (fn(a) > 0).
-// fn(s, f, df) fills the value and the derivative. Newton steps that leave
-// the current bracket (or a NaN derivative) fall back to bisection, so the
-// result always stays inside [a, b]. Stops when the step is below `tol`.
+// Safeguarded Newton-bisection for a root of fn in [a, b], given fa = fn(a)
+// and fb = fn(b) on opposite sides of zero (fa > 0 != fb > 0). fn(s, f, df)
+// fills the value and the derivative. It starts from the secant point and
+// bisects whenever a Newton step would leave the current bracket (or the
+// derivative is 0 or NaN), so the result always lies in [a, b]. It stops
+// after a Newton step shorter than `tol` (which leaves an error ~tol^2) or
+// once the bracket itself is narrower than `tol`.
 template <class Fn>
-double solve_bracketed(const Fn& fn, double a, double b, bool a_positive, double tol) {
-  double lo = a, hi = b;  // lo: the a_positive side, hi: the other
-  double s = 0.5 * (a + b);
+double solve_bracketed(const Fn& fn, double a, double b, double fa, double fb, double tol) {
+  const bool a_positive = fa > 0.0;
+  double lo = a, hi = b;  // lo: fa's side, hi: the other
+  double s = a - fa * (b - a) / (fb - fa);
+  if (!(s > a && s < b)) s = 0.5 * (a + b);
   for (int i = 0; i < 128; ++i) {
     double f = 0.0, df = 0.0;
     fn(s, f, df);
@@ -79,8 +83,12 @@ double solve_bracketed(const Fn& fn, double a, double b, bool a_positive, double
     ((f > 0.0) == a_positive ? lo : hi) = s;
     double mn = std::min(lo, hi), mx = std::max(lo, hi);
     double next = s - f / df;
-    if (!(next > mn && next < mx)) next = 0.5 * (lo + hi);
-    if (std::abs(next - s) <= tol || next == mn || next == mx) return next;
+    if (next >= mn && next <= mx) {
+      if (std::abs(next - s) <= tol) return next;
+    } else {
+      next = 0.5 * (lo + hi);
+      if (mx - mn <= tol || next == mn || next == mx) return next;
+    }
     s = next;
   }
   return s;

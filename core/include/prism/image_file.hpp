@@ -1,0 +1,33 @@
+// Reading and writing image files (PNG, JPG, EXR, ... through OpenImageIO).
+// OpenImageIO and its ~250 dependent libraries take about a second to load,
+// so they live in a module (libprism_oiio.so beside libprism_core.so) that is
+// loaded the first time an image is read or written: `prism trace`, `list`
+// and every run that fails validation before touching an image start fast.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace prism {
+
+enum class PixelFormat { UInt8, UInt16, Half, Float, Other };
+
+struct ImageFile {
+  int width = 0;
+  int height = 0;
+  int channels = 0;
+  std::vector<std::string> channel_names;  // empty: the format's defaults
+  PixelFormat format = PixelFormat::Float;  // as stored in the file
+  std::vector<float> pixels;  // width * height * channels; integer formats scaled to [0, 1]
+};
+
+// Reads every pixel as float, alpha unassociated (never premultiplied).
+// Refuses images over `max_pixels`. Throws InputError.
+ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels = size_t(1) << 28);
+
+// Writes `image` stored as `storage` (PNG: UInt8/UInt16, EXR: Half/Float),
+// in place (callers that need atomicity write to a temporary name). Throws RuntimeError.
+void write_image_file(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
+
+}  // namespace prism

@@ -1,0 +1,56 @@
+#include "prism/image_file.hpp"
+
+#include <dlfcn.h>
+
+#include <mutex>
+
+#include "image_module.hpp"
+#include "prism/errors.hpp"
+
+namespace prism {
+
+namespace {
+
+// libprism_oiio.so lives beside libprism_core.so (build and install trees alike).
+std::filesystem::path module_path() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&read_image_file), &info) && info.dli_fname)
+    return std::filesystem::path(info.dli_fname).parent_path() / "libprism_oiio.so";
+  return "libprism_oiio.so";
+}
+
+const ImageModule& image_module() {
+  static std::once_flag once;
+  static const ImageModule* module = nullptr;
+  static std::string error;
+  std::call_once(once, [] {
+    const std::filesystem::path path = module_path();
+    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // kept for the life of the process
+    if (!handle) {
+      const char* why = dlerror();
+      error = "cannot load image support " + path.string() + ": " + (why ? why : "dlopen failed");
+      return;
+    }
+    auto entry = reinterpret_cast<PrismImageModuleFn>(dlsym(handle, PRISM_IMAGE_MODULE_SYMBOL));
+    if (!entry) error = "cannot load image support: " + path.string() + " has no " + PRISM_IMAGE_MODULE_SYMBOL;
+    else module = entry();
+  });
+  if (!module) throw RuntimeError(error);
+  return *module;
+}
+
+}  // namespace
+
+ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels) {
+  ImageFile image;
+  std::string error = image_module().read(file, max_pixels, image);
+  if (!error.empty()) throw InputError("cannot read image '" + file.string() + "': " + error);
+  return image;
+}
+
+void write_image_file(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage) {
+  std::string error = image_module().write(file, image, storage);
+  if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
+}
+
+}  // namespace prism

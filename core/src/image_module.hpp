@@ -1,0 +1,22 @@
+// The table libprism_oiio.so exports; internal to the core (same build, so
+// C++ types may cross it).
+#pragma once
+
+#include <string>
+
+#include "prism/image_file.hpp"
+
+namespace prism {
+
+struct ImageModule {
+  // Return an empty string on success, else the reason.
+  std::string (*read)(const std::filesystem::path& file, size_t max_pixels, ImageFile& out);
+  std::string (*write)(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
+};
+
+}  // namespace prism
+
+extern "C" {
+typedef const prism::ImageModule* (*PrismImageModuleFn)(void);
+#define PRISM_IMAGE_MODULE_SYMBOL "prism_image_module"
+}
