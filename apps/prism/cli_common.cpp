@@ -61,10 +61,13 @@ double PhaseTimer::total() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
 }
 
-void write_stats(const std::string& file, const std::string& backend, const Scene& scene, const BackendStats& stats,
-                 const std::map<std::string, double>& ms) {
+void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
+                 std::map<std::string, double> ms) {
+  const BackendStats stats = choice.backend->stats();
+  if (auto it = stats.ms.find("compile"); it != stats.ms.end()) ms["compile"] = it->second;
+  ms["total"] = timer.total();
   nlohmann::ordered_json j;
-  j["backend"] = backend;
+  j["backend"] = choice.name;
   j["plugins_loaded"] = scene.plugin_names();
   j["kernel_features"] = stats.kernel_features;
   j["rays"] = stats.rays;

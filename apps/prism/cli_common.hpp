@@ -33,9 +33,10 @@ class PhaseTimer {
   std::chrono::steady_clock::time_point start_, last_;
 };
 
-// Writes the --stats JSON (atomically).
-void write_stats(const std::string& file, const std::string& backend, const Scene& scene, const BackendStats& stats,
-                 const std::map<std::string, double>& ms);
+// Writes the --stats JSON (atomically): the phases timed in `ms`, the
+// backend's own compile time, and the total so far.
+void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
+                 std::map<std::string, double> ms);
 
 // A progress bar on stderr, drawn only when stderr is a terminal.
 std::function<void(double)> progress_bar();

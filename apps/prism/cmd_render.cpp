@@ -52,10 +52,7 @@ int run_render(const RenderArgs& args) {
   finish_progress_bar();
   ms["render"] = timer.lap();
   write_image(image, args.output);
-  BackendStats stats = choice.backend->stats();
-  if (auto it = stats.ms.find("compile"); it != stats.ms.end()) ms["compile"] = it->second;
-  ms["total"] = timer.total();
-  if (!args.stats.empty()) write_stats(args.stats, choice.name, scene, stats, ms);
+  if (!args.stats.empty()) write_stats(args.stats, choice, scene, timer, ms);
   return 0;
 }
 

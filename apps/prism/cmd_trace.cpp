@@ -90,10 +90,7 @@ int run_trace(const TraceArgs& args) {
   auto results = choice.backend->trace(rays);
   ms["render"] = timer.lap();
   write_text_file_atomically(args.output, format_results(results, args.digits));
-  BackendStats stats = choice.backend->stats();
-  if (auto it = stats.ms.find("compile"); it != stats.ms.end()) ms["compile"] = it->second;
-  ms["total"] = timer.total();
-  if (!args.stats.empty()) write_stats(args.stats, choice.name, scene, stats, ms);
+  if (!args.stats.empty()) write_stats(args.stats, choice, scene, timer, ms);
   return 0;
 }
 

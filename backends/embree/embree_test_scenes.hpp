@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "prism/backend.hpp"
 #include "prism/errors.hpp"
 #include "prism/geometry.hpp"
 #include "prism/registry.hpp"
@@ -22,6 +24,9 @@ inline Registry& registry() {
   static Registry instance;
   return instance;
 }
+
+// A backend created through the registry, as `prism` creates it.
+inline std::unique_ptr<Backend> create_backend(const std::string& name) { return registry().backend(name)->create(); }
 
 inline bool has_primitive(const std::string& type) {
   try {

@@ -117,25 +117,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
   if (a == 2) write_surface(out, p, n, from_x, down_y);
 }
 
-const PrismPrimitiveDesc kDesc = {
-    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
-    .desc_size = sizeof(PrismPrimitiveDesc),
-    .type_name = "box",
-    .plugin_version = "1.0.0",
-    .flags = PRISM_PRIMITIVE_TRANSFORMABLE,
-    .field_count = sizeof(kFields) / sizeof(kFields[0]),
-    .fields = kFields,
-    .record_size = sizeof(BoxRecord),
-    .reserved = 0,
-    .validate = validate_nothing,
-    .pack = pack,
-    .bounds = bounds,
-    .intersect = intersect,
-    .intersect_batch = intersect_batch<intersect>,
-    .surface = surface,
-    .glsl_source = nullptr,
-    .glsl_prefix = nullptr,
-};
+const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("box", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
+                                                       sizeof(BoxRecord), validate_nothing, pack, bounds, surface);
 
 }  // namespace
 

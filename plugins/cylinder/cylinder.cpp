@@ -56,25 +56,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
   write_surface(out, point, normal, turn_fraction(point.z, point.x), point.y / height);
 }
 
-const PrismPrimitiveDesc kDesc = {
-    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
-    .desc_size = sizeof(PrismPrimitiveDesc),
-    .type_name = "cylinder",
-    .plugin_version = "1.0.0",
-    .flags = PRISM_PRIMITIVE_TRANSFORMABLE,
-    .field_count = sizeof(kFields) / sizeof(kFields[0]),
-    .fields = kFields,
-    .record_size = sizeof(CylinderRecord),
-    .reserved = 0,
-    .validate = validate_nothing,
-    .pack = pack,
-    .bounds = bounds,
-    .intersect = intersect_quadric_record,
-    .intersect_batch = intersect_batch<intersect_quadric_record>,
-    .surface = surface,
-    .glsl_source = nullptr,
-    .glsl_prefix = nullptr,
-};
+const PrismPrimitiveDesc kDesc = describe_primitive<intersect_quadric_record>("cylinder", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
+                                                       sizeof(CylinderRecord), validate_nothing, pack, bounds, surface);
 
 }  // namespace
 

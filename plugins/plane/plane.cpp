@@ -83,25 +83,8 @@ void surface(const void* record, const PrismRay* ray, const PrismHit* hit, Prism
   write_surface(out, p, m, u, v);
 }
 
-const PrismPrimitiveDesc kDesc = {
-    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
-    .desc_size = sizeof(PrismPrimitiveDesc),
-    .type_name = "plane",
-    .plugin_version = "1.0.0",
-    .flags = 0,
-    .field_count = sizeof(kFields) / sizeof(kFields[0]),
-    .fields = kFields,
-    .record_size = sizeof(PlaneRecord),
-    .reserved = 0,
-    .validate = validate_nothing,
-    .pack = pack,
-    .bounds = bounds,
-    .intersect = intersect,
-    .intersect_batch = intersect_batch<intersect>,
-    .surface = surface,
-    .glsl_source = nullptr,
-    .glsl_prefix = nullptr,
-};
+const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("plane", 0, kFields,
+                                                       sizeof(PlaneRecord), validate_nothing, pack, bounds, surface);
 
 }  // namespace
 

@@ -82,25 +82,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
   write_surface(out, p, glm::dvec3(0.0, 1.0, 0.0), u, turn_fraction(p.z, p.x));
 }
 
-const PrismPrimitiveDesc kDesc = {
-    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
-    .desc_size = sizeof(PrismPrimitiveDesc),
-    .type_name = "ring",
-    .plugin_version = "1.0.0",
-    .flags = PRISM_PRIMITIVE_TRANSFORMABLE,
-    .field_count = sizeof(kFields) / sizeof(kFields[0]),
-    .fields = kFields,
-    .record_size = sizeof(RingRecord),
-    .reserved = 0,
-    .validate = validate,
-    .pack = pack,
-    .bounds = bounds,
-    .intersect = intersect,
-    .intersect_batch = intersect_batch<intersect>,
-    .surface = surface,
-    .glsl_source = nullptr,
-    .glsl_prefix = nullptr,
-};
+const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
+                                                       sizeof(RingRecord), validate, pack, bounds, surface);
 
 }  // namespace
 

@@ -224,25 +224,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
   write_surface(out, p, normal, u, v);
 }
 
-const PrismPrimitiveDesc kDesc = {
-    .abi_version = PRISM_PRIMITIVE_ABI_VERSION,
-    .desc_size = sizeof(PrismPrimitiveDesc),
-    .type_name = "torus",
-    .plugin_version = "1.0.0",
-    .flags = PRISM_PRIMITIVE_TRANSFORMABLE,
-    .field_count = sizeof(kFields) / sizeof(kFields[0]),
-    .fields = kFields,
-    .record_size = sizeof(TorusRecord),
-    .reserved = 0,
-    .validate = validate,
-    .pack = pack,
-    .bounds = bounds,
-    .intersect = intersect,
-    .intersect_batch = intersect_batch<intersect>,
-    .surface = surface,
-    .glsl_source = nullptr,
-    .glsl_prefix = nullptr,
-};
+const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("torus", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
+                                                       sizeof(TorusRecord), validate, pack, bounds, surface);
 
 }  // namespace
 

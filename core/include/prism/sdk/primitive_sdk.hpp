@@ -78,6 +78,35 @@ void intersect_batch(const void* record, size_t count, const PrismRay* rays, con
   for (size_t i = 0; i < count; ++i) found[i] = Intersect(record, &rays[i], tmin[i], tmax[i], &hits[i]) ? 1 : 0;
 }
 
+// A plugin's descriptor table from the parts that differ between plugins;
+// the batch query is the loop over `Intersect`, the GLSL slots stay empty.
+template <IntersectFn Intersect, size_t FieldCount>
+constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t flags,
+                                                const PrismField (&fields)[FieldCount], uint32_t record_size,
+                                                int (*validate)(const double*, PrismError*),
+                                                void (*pack)(const double*, void*),
+                                                int (*bounds)(const void*, double*, double*),
+                                                void (*surface)(const void*, const PrismRay*, const PrismHit*,
+                                                                PrismSurface*)) {
+  return PrismPrimitiveDesc{PRISM_PRIMITIVE_ABI_VERSION,
+                            sizeof(PrismPrimitiveDesc),
+                            type_name,
+                            "1.0.0",
+                            flags,
+                            uint32_t{FieldCount},
+                            fields,
+                            record_size,
+                            0,
+                            validate,
+                            pack,
+                            bounds,
+                            Intersect,
+                            intersect_batch<Intersect>,
+                            surface,
+                            nullptr,
+                            nullptr};
+}
+
 // Fills a PrismSurface from local point, normal and uv.
 inline void write_surface(PrismSurface* out, const glm::dvec3& point, const glm::dvec3& normal, double u, double v) {
   store3(point, out->point);
