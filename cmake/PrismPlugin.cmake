@@ -18,7 +18,7 @@ function(prism_add_primitive_plugin type)
     set(test prism_primitive_${type}_test)
     add_executable(${test} ${ARG_TESTS} $<TARGET_OBJECTS:${objects}>)
     target_link_libraries(${test} PRIVATE prism_sdk prism_test_support GTest::gtest_main)
-    gtest_discover_tests(${test} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "unit;primitive")
+    gtest_discover_tests(${test} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
   endif()
 endfunction()
 
