@@ -14,11 +14,13 @@ function(prism_add_primitive_plugin type)
   set_target_properties(prism_primitive_${type} PROPERTIES
     PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY ${PRISM_PLUGIN_OUTPUT_DIR})
   install(TARGETS prism_primitive_${type} LIBRARY DESTINATION lib/prism)
+  set_property(GLOBAL APPEND PROPERTY PRISM_PLUGIN_TARGETS prism_primitive_${type})
   if(PRISM_BUILD_TESTS AND ARG_TESTS)
     set(test prism_primitive_${type}_test)
     add_executable(${test} ${ARG_TESTS} $<TARGET_OBJECTS:${objects}>)
     target_link_libraries(${test} PRIVATE prism_sdk prism_test_support GTest::gtest_main)
     gtest_discover_tests(${test} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
+    prism_add_to_unit_suite(${test})
   endif()
 endfunction()
 
@@ -31,4 +33,17 @@ function(prism_add_backend name)
   set_target_properties(prism_backend_${name} PROPERTIES
     PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY ${PRISM_PLUGIN_OUTPUT_DIR})
   install(TARGETS prism_backend_${name} LIBRARY DESTINATION lib/prism)
+  set_property(GLOBAL APPEND PROPERTY PRISM_PLUGIN_TARGETS prism_backend_${name})
+endfunction()
+
+# Test programs labelled unit or shading register here; the target
+# prism_unit_suite builds just them and every plugin (the sanitizer run).
+function(prism_add_to_unit_suite target)
+  set_property(GLOBAL APPEND PROPERTY PRISM_UNIT_TEST_TARGETS ${target})
+endfunction()
+
+function(prism_define_unit_suite)
+  get_property(tests GLOBAL PROPERTY PRISM_UNIT_TEST_TARGETS)
+  get_property(plugins GLOBAL PROPERTY PRISM_PLUGIN_TARGETS)
+  add_custom_target(prism_unit_suite DEPENDS ${tests} ${plugins} prism_oiio)
 endfunction()

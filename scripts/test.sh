@@ -10,7 +10,7 @@ cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
 
 cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPRISM_SANITIZE=ON
-cmake --build build-asan -j"$jobs"
+cmake --build build-asan -j"$jobs" --target prism_unit_suite
 # LeakSanitizer is on (ASan's default). The 100,000-sphere scene (label
 # "large") is left to the main build: under ASan at -O0 it alone takes ~15 min.
 ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
