@@ -47,3 +47,15 @@ function(prism_define_unit_suite)
   get_property(plugins GLOBAL PROPERTY PRISM_PLUGIN_TARGETS)
   add_custom_target(prism_unit_suite DEPENDS ${tests} ${plugins} prism_oiio)
 endfunction()
+
+# Adds every subfolder of the calling folder that has a CMakeLists.txt, in
+# name order: adding a plugin, backend or test folder edits no list.
+function(prism_add_subfolders)
+  file(GLOB children LIST_DIRECTORIES true RELATIVE ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/*)
+  list(SORT children)
+  foreach(child ${children})
+    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${child}/CMakeLists.txt)
+      add_subdirectory(${child})
+    endif()
+  endforeach()
+endfunction()

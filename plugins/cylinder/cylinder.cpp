@@ -8,24 +8,11 @@
 // the foot of the perpendicular, stable roots, clip test on the point formed
 // in that frame, one Newton step onto the surface. So t and N are
 // bit-identical to those of the equivalent `quadric` object.
-#include <cmath>
-
-#include "prism/primitive_abi.h"
-#include "prism/sdk/math.hpp"
-#include "prism/sdk/primitive_sdk.hpp"
-#include "prism/sdk/quadric_math.hpp"
+#include "prism/sdk/axial_quadric.hpp"
 
 namespace {
 
 using namespace prism::sdk;
-
-struct CylinderRecord {
-  QuadricShape shape;  // first, so intersect_quadric_record reads it
-  double radius;
-  double height;
-  double pad[2];
-};
-static_assert(sizeof(CylinderRecord) % 16 == 0);
 
 const PrismField kFields[] = {
     positive_length("radius", 1, "radius of the tube"),
@@ -33,31 +20,12 @@ const PrismField kFields[] = {
 };
 
 void pack(const double* values, void* record) {
-  double radius = values[0], height = values[1];
+  const double radius = values[0], height = values[1];
   const double coef[10] = {1, 0, 1, 0, 0, 0, 0, 0, 0, -(radius * radius)};
-  const double lo[3] = {-kInf, 0.0, -kInf}, hi[3] = {kInf, height, kInf};
-  *static_cast<CylinderRecord*>(record) = CylinderRecord{make_quadric(coef, lo, hi), radius, height, {0.0, 0.0}};
+  pack_axial_quadric(coef, radius, height, record);
 }
 
-int bounds(const void* record, double lo[3], double hi[3]) {
-  const auto& rec = record_of<CylinderRecord>(record);
-  const double low[3] = {-rec.radius, 0.0, -rec.radius}, high[3] = {rec.radius, rec.height, rec.radius};
-  for (int i = 0; i < 3; ++i) {
-    lo[i] = low[i];
-    hi[i] = high[i];
-  }
-  return 1;
-}
-
-void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
-  glm::dvec3 point, normal;
-  quadric_record_surface(record, hit, point, normal);
-  double height = record_of<CylinderRecord>(record).height;
-  write_surface(out, point, normal, turn_fraction(point.z, point.x), point.y / height);
-}
-
-const PrismPrimitiveDesc kDesc = describe_primitive<intersect_quadric_record>("cylinder", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(CylinderRecord), validate_nothing, pack, bounds, surface);
+const PrismPrimitiveDesc kDesc = describe_axial_quadric("cylinder", kFields, pack);
 
 }  // namespace
 

@@ -1,0 +1,51 @@
+// What the cylinder and cone plugins share: a quadric clipped to
+// 0 <= y <= height around the local y axis, with radius and height kept for
+// bounds and uv (u = 0.5 + atan2(z, x)/2pi, v = y/height). Intersection,
+// point and normal are the quadric code itself, so t and N are bit-identical
+// to the `quadric` object each stands for.
+#pragma once
+
+#include "prism/primitive_abi.h"
+#include "prism/sdk/primitive_sdk.hpp"
+#include "prism/sdk/quadric_math.hpp"
+
+namespace prism::sdk {
+
+struct AxialQuadricRecord {
+  QuadricShape shape;  // first, so intersect_quadric_record reads it
+  double radius;
+  double height;
+  double pad[2];
+};
+static_assert(sizeof(AxialQuadricRecord) % 16 == 0);
+
+// Packs coefficients `coef` clipped to 0 <= y <= height.
+inline void pack_axial_quadric(const double coef[10], double radius, double height, void* record) {
+  const double lo[3] = {-kInf, 0.0, -kInf}, hi[3] = {kInf, height, kInf};
+  *static_cast<AxialQuadricRecord*>(record) = AxialQuadricRecord{make_quadric(coef, lo, hi), radius, height, {0.0, 0.0}};
+}
+
+inline int axial_quadric_bounds(const void* record, double lo[3], double hi[3]) {
+  const auto& rec = record_of<AxialQuadricRecord>(record);
+  store3({-rec.radius, 0.0, -rec.radius}, lo);
+  store3({rec.radius, rec.height, rec.radius}, hi);
+  return 1;
+}
+
+inline void axial_quadric_surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
+  glm::dvec3 point, normal;
+  quadric_record_surface(record, hit, point, normal);
+  const double height = record_of<AxialQuadricRecord>(record).height;
+  write_surface(out, point, normal, turn_fraction(point.z, point.x), point.y / height);
+}
+
+// The descriptor of a plugin whose `pack` calls pack_axial_quadric.
+template <size_t FieldCount>
+constexpr PrismPrimitiveDesc describe_axial_quadric(const char* type_name, const PrismField (&fields)[FieldCount],
+                                                    void (*pack)(const double*, void*)) {
+  return describe_primitive<intersect_quadric_record>(type_name, PRISM_PRIMITIVE_TRANSFORMABLE, fields,
+                                                      sizeof(AxialQuadricRecord), validate_nothing, pack,
+                                                      axial_quadric_bounds, axial_quadric_surface);
+}
+
+}  // namespace prism::sdk
