@@ -84,9 +84,12 @@ void check_output_path(const fs::path& file, const std::vector<std::string>& ext
   }
   fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw InputError(file.string() + ": folder " + folder.string() + " does not exist");
-  if (::access(folder.c_str(), W_OK) != 0) throw InputError(file.string() + ": folder " + folder.string() + " is not writable");
-  if (fs::is_directory(file, ec)) throw InputError(file.string() + ": is a folder");
+  // An output that cannot be written is a run-time failure (exit 1) in the
+  // format's terms, but it is found here, before any rendering.
+  if (!fs::is_directory(folder, ec)) throw RuntimeError(file.string() + ": folder " + folder.string() + " does not exist");
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw RuntimeError(file.string() + ": folder " + folder.string() + " is not writable");
+  if (fs::is_directory(file, ec)) throw RuntimeError(file.string() + ": is a folder");
 }
 
 void write_image(const Image& image, const fs::path& file) {

@@ -455,12 +455,14 @@ class CommandLineErrors : public CliTest {
     scene_ = write("scene.json", SceneText{}.text()).string();
     rays_ = write("rays.csv", "0,0,-5,0,0,1\n").string();
   }
-  // Runs prism with `args`; expects exit 2, `expect` in the message and
-  // nothing new in the folder.
-  RunResult expect_rejected(const std::vector<std::string>& args, const std::vector<std::string>& expect) {
+  // Runs prism with `args`; expects exit `status` (2: bad input; 1: an
+  // output that cannot be written, as the spec's exit statuses say),
+  // `expect` in the message and nothing new in the folder.
+  RunResult expect_rejected(const std::vector<std::string>& args, const std::vector<std::string>& expect,
+                            int status = 2) {
     const auto before = list_folder(dir());
     RunResult r = run(args);
-    EXPECT_TRUE(ExitedWith(r, 2));
+    EXPECT_TRUE(ExitedWith(r, status));
     EXPECT_TRUE(StderrHas(r, expect));
     EXPECT_EQ(list_folder(dir()), before) << r;
     return r;
@@ -501,16 +503,16 @@ TEST_F(CommandLineErrors, UnsupportedOutputExtension) {
 }
 
 TEST_F(CommandLineErrors, OutputFolderMissing) {
-  expect_rejected({"render", scene_, "-b", "reference", "-o", path("nosuch/out.png").string()}, {"nosuch"});
+  expect_rejected({"render", scene_, "-b", "reference", "-o", path("nosuch/out.png").string()}, {"nosuch"}, 1);
   expect_rejected({"trace", scene_, "-b", "reference", "--rays", rays_, "-o", path("nosuch/out.csv").string()},
-                  {"nosuch"});
-  expect_rejected(render({"--stats", path("nosuch/stats.json").string()}), {"nosuch"});
+                  {"nosuch"}, 1);
+  expect_rejected(render({"--stats", path("nosuch/stats.json").string()}), {"nosuch"}, 1);
   EXPECT_FALSE(fs::exists(path("nosuch")));
 }
 
 TEST_F(CommandLineErrors, OutputIsAFolder) {
   fs::create_directory(path("out.png"));
-  expect_rejected(render({}), {"out.png"});
+  expect_rejected(render({}), {"out.png"}, 1);
   EXPECT_TRUE(fs::is_empty(path("out.png")));
 }
 

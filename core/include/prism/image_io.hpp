@@ -14,8 +14,8 @@ namespace prism {
 // unsupported extension and RuntimeError when the file cannot be written.
 void write_image(const Image& image, const std::filesystem::path& file);
 
-// Throws InputError unless `file` has an extension write_image supports and
-// its folder exists and is writable (checked before rendering starts).
+// Checked before rendering starts: InputError unless `file` has one of
+// `extensions`; RuntimeError unless its folder exists and is writable.
 void check_output_path(const std::filesystem::path& file, const std::vector<std::string>& extensions);
 
 // Writes `contents` to `file` atomically (temporary name, then rename).
