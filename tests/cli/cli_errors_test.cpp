@@ -282,6 +282,11 @@ const std::vector<BadScene>& bad_scenes() {
        with_object(R"({"type": "quadric", "coefficients": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1],
                        "clip_min": [null, 0.5, null], "clip_max": [null, -0.5, null]})"),
        {"objects[0]", "clip_min|clip_max"}},
+      // The 1e7 bound on clip entries is the core's (PRISM_FIELD_LENGTH), not the plugin's.
+      {"quadric_clip_beyond_1e7",
+       with_object(R"({"type": "quadric", "coefficients": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1],
+                       "clip_min": [-2e7, null, null]})"),
+       {"objects[0].clip_min[0]", "got -20000000"}},
       {"box_zero_half_size", with_object(R"({"type": "box", "half_size": [1, 0, 1]})"),
        {"objects[0].half_size[1]", "got 0"}},
       {"cylinder_negative_height", with_object(R"({"type": "cylinder", "radius": 1, "height": -1})"),
