@@ -1,14 +1,18 @@
 # Declaring plugins. A primitive plugin is one folder under plugins/ that calls
-#   prism_add_primitive_plugin(<type> SOURCES ... [TESTS ...])
-# and builds libprism_primitive_<type>.so into the plugin folder. Its tests link
+#   prism_add_primitive_plugin(<type> SOURCES ... [GLSL <file>] [TESTS ...])
+# and builds libprism_primitive_<type>.so into the plugin folder. The GLSL
+# file (the GPU intersector) is embedded as `kPluginGlsl` in "<file>.hpp". Its tests link
 # the same sources directly (an object library), so they exercise exactly the
 # code the shared object exports.
 
 function(prism_add_primitive_plugin type)
-  cmake_parse_arguments(ARG "" "" "SOURCES;TESTS" ${ARGN})
+  cmake_parse_arguments(ARG "" "GLSL" "SOURCES;TESTS" ${ARGN})
   set(objects prism_primitive_${type}_objects)
   add_library(${objects} OBJECT ${ARG_SOURCES})
   target_link_libraries(${objects} PUBLIC prism_sdk)
+  if(ARG_GLSL)
+    prism_embed_text(${objects} ${ARG_GLSL} kPluginGlsl)
+  endif()
   add_library(prism_primitive_${type} MODULE $<TARGET_OBJECTS:${objects}>)
   target_link_libraries(prism_primitive_${type} PRIVATE prism_sdk)
   set_target_properties(prism_primitive_${type} PROPERTIES

@@ -9,6 +9,8 @@ packages=(
   libglm-dev nlohmann-json3-dev libcli11-dev libfmt-dev
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
   libgtest-dev libgmock-dev libbenchmark-dev
+  libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
+  xvfb xauth x11-apps glslang-tools spirv-tools
 )
 missing=()
 for p in "${packages[@]}"; do

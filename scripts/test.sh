@@ -14,5 +14,5 @@ cmake --build build-asan -j"$jobs" --target prism_unit_suite
 # LeakSanitizer is on (ASan's default). The 100,000-sphere scene (label
 # "large") is left to the main build: under ASan at -O0 it alone takes ~15 min.
 ASAN_OPTIONS=abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  PRISM_REQUIRE_BACKENDS=reference,embree \
+  PRISM_REQUIRE_BACKENDS=reference,embree,opengl \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" -L 'unit|shading'

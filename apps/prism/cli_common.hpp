@@ -10,6 +10,7 @@
 #include "prism/backend.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene.hpp"
+#include "prism/scene_loader.hpp"
 
 namespace prism::cli {
 
@@ -21,6 +22,20 @@ struct BackendChoice {
 // Loads and starts the backend named on the command line ("auto": the
 // fastest usable one). Unknown or unloadable: InputError; cannot start: RuntimeError.
 BackendChoice open_backend(Registry& registry, const std::string& name);
+
+// The scene's image settings with the command line's --width, --height,
+// --spp and --max-depth applied (any Args with those optional members),
+// checked against the format's ranges (InputError).
+template <class Args>
+ImageSettings image_with_overrides(const Scene& scene, const Args& args) {
+  ImageSettings image = scene.image;
+  if (args.width) image.width = *args.width;
+  if (args.height) image.height = *args.height;
+  if (args.spp) image.spp = *args.spp;
+  if (args.max_depth) image.max_depth = *args.max_depth;
+  check_image_settings(image, "--");
+  return image;
+}
 
 class PhaseTimer {
  public:

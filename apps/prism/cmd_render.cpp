@@ -19,12 +19,7 @@ struct RenderArgs {
 
 RenderSettings settings_for(const Scene& scene, const RenderArgs& args) {
   RenderSettings settings;
-  settings.image = scene.image;
-  if (args.width) settings.image.width = *args.width;
-  if (args.height) settings.image.height = *args.height;
-  if (args.spp) settings.image.spp = *args.spp;
-  if (args.max_depth) settings.image.max_depth = *args.max_depth;
-  check_image_settings(settings.image, "--");
+  settings.image = image_with_overrides(scene, args);
   for (const auto& aov : args.aov) {
     if (aov == "id") settings.aov_id = true;
     else if (aov == "path") settings.aov_path = true;

@@ -12,5 +12,6 @@ using Command = std::function<int()>;
 Command add_list_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
 Command add_trace_command(CLI::App& app);
+Command add_view_command(CLI::App& app);
 
 }  // namespace prism::cli

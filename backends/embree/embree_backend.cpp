@@ -22,6 +22,7 @@ class EmbreeBackend final : public Backend {
     query_.reset();
     const auto start = std::chrono::steady_clock::now();
     query_ = std::make_unique<EmbreeQuery>(scene, device_);
+    stats_.info["precision"] = "double";
     stats_.ms["build"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     scene_ = &scene;
   }

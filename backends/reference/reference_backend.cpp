@@ -46,6 +46,7 @@ class ReferenceBackend : public Backend {
   void prepare(const Scene& scene) override {
     scene_ = &scene;
     query_ = std::make_unique<BruteForceQuery>(scene);
+    stats_.info["precision"] = "double";
     stats_.ms["build"] = 0.0;  // nothing to build: that is the point of this backend
   }
   Image render(const RenderSettings& settings) override { return render_cpu(*scene_, *query_, settings, stats_); }

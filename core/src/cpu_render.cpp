@@ -29,7 +29,7 @@ void render_pixel(const Frame& f, Shader& shader, int i, int j) {
   const ImageSettings& s = f.settings.image;
   glm::dvec3 sum(0.0);
   for (int k = 0; k < s.spp; ++k) {
-    Ray ray = camera_ray(f.scene.camera, s.width, s.height, i, j, sample_offset(k));
+    Ray ray = camera_ray(f.settings.camera ? *f.settings.camera : f.scene.camera, s.width, s.height, i, j, sample_offset(k));
     SampleResult r = shader.trace_sample(ray, s.max_depth, k == 0 && f.settings.aov_path);
     sum += r.radiance;
     if (k == 0) {

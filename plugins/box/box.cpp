@@ -12,6 +12,7 @@
 //   is snapped onto the hit face and clamped into the face rectangle; the
 //   normal and uv then follow the spec's argmax rule on that point (ties
 //   x < y < z), so an edge hit gives the same answer in every backend.
+// - GPU: box.glsl, the same method in GLSL double precision.
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -19,6 +20,7 @@
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
+#include "box.glsl.hpp"
 
 namespace {
 
@@ -28,6 +30,7 @@ struct BoxRecord {
   double half[4];  // hx, hy, hz, unused
 };
 static_assert(sizeof(BoxRecord) % 16 == 0);
+static_assert(glsl_define(kPluginGlsl, "BOX_HALF") == offsetof(BoxRecord, half) / sizeof(double));
 
 const PrismField kFields[] = {positive_length("half_size", 3, "half extents along local x, y, z")};
 
@@ -118,7 +121,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("box", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(BoxRecord), validate_nothing, pack, bounds, surface);
+                                                       sizeof(BoxRecord), validate_nothing, pack, bounds, surface,
+                                                       kPluginGlsl, "box");
 
 }  // namespace
 

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
 
@@ -188,6 +189,10 @@ TEST(BoxTest, NanRayMisses) {
   Shape s = box({1, 1, 1});
   EXPECT_FALSE(s.intersect({NAN, 0, -5}, {0, 0, 1}));
   EXPECT_FALSE(s.intersect({0, 0, -5}, {NAN, NAN, NAN}));
+}
+
+TEST(BoxTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "box", {}), "");
 }
 
 }  // namespace

@@ -6,11 +6,19 @@
 //
 // Numerics: none of its own; see prism/sdk/axial_quadric.hpp. t and N are
 // bit-identical to those of the equivalent `quadric` object.
+//
+// GPU: cone.glsl runs the core module core/glsl/quadric.glsl, the GLSL
+// double port of that code shared with quadric and cylinder; the record
+// offsets the module reads are static_asserted below.
 #include "prism/sdk/axial_quadric.hpp"
+#include "cone.glsl.hpp"
+#include "quadric.glsl.hpp"  // kQuadricModuleGlsl: core/glsl/quadric.glsl, which cone.glsl requires
 
 namespace {
 
 using namespace prism::sdk;
+
+static_assert(quadric_module_matches_records(kQuadricModuleGlsl));
 
 const PrismField kFields[] = {
     positive_length("radius", 1, "radius of the open end at y = height"),
@@ -24,7 +32,7 @@ void pack(const double* values, void* record) {
   pack_axial_quadric(coef, radius, height, record);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric("cone", kFields, pack);
+const PrismPrimitiveDesc kDesc = describe_axial_quadric("cone", kFields, pack, kPluginGlsl, "cone");
 
 }  // namespace
 

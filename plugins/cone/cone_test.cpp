@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
 #include "prism/sdk/quadric_math.hpp"
@@ -130,6 +131,10 @@ TEST(ConeTest, BoundsAreTheOpenEndBox) {
   ASSERT_EQ(s.desc().bounds(s.record(), lo, hi), 1);
   EXPECT_EQ(dvec3(lo[0], lo[1], lo[2]), dvec3(-0.5, 0, -0.5));
   EXPECT_EQ(dvec3(hi[0], hi[1], hi[2]), dvec3(0.5, 3, 0.5));
+}
+
+TEST(ConeTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "cone", {"quadric"}), "");
 }
 
 }  // namespace

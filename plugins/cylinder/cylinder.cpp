@@ -8,11 +8,19 @@
 // the foot of the perpendicular, stable roots, clip test on the point formed
 // in that frame, one Newton step onto the surface. So t and N are
 // bit-identical to those of the equivalent `quadric` object.
+//
+// GPU: cylinder.glsl runs the core module core/glsl/quadric.glsl, the GLSL
+// double port of that code shared with quadric and cone; the record offsets
+// the module reads are static_asserted below.
 #include "prism/sdk/axial_quadric.hpp"
+#include "cylinder.glsl.hpp"
+#include "quadric.glsl.hpp"  // kQuadricModuleGlsl: core/glsl/quadric.glsl, which cylinder.glsl requires
 
 namespace {
 
 using namespace prism::sdk;
+
+static_assert(quadric_module_matches_records(kQuadricModuleGlsl));
 
 const PrismField kFields[] = {
     positive_length("radius", 1, "radius of the tube"),
@@ -25,7 +33,7 @@ void pack(const double* values, void* record) {
   pack_axial_quadric(coef, radius, height, record);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric("cylinder", kFields, pack);
+const PrismPrimitiveDesc kDesc = describe_axial_quadric("cylinder", kFields, pack, kPluginGlsl, "cylinder");
 
 }  // namespace
 

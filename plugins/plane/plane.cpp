@@ -13,11 +13,13 @@
 //   moves uv by that much.
 // - m is normalised with prism::sdk::safe_normalize, so a normal such as
 //   (1e-300, 0, 0), which passes the non-zero check, still works.
+// - GPU: plane.glsl, the same method in GLSL double precision.
 #include <cmath>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
+#include "plane.glsl.hpp"
 
 namespace {
 
@@ -31,6 +33,11 @@ struct PlaneRecord {
   double t2[4];
 };
 static_assert(sizeof(PlaneRecord) % 16 == 0);
+static_assert(glsl_define(kPluginGlsl, "PLANE_POINT") == offsetof(PlaneRecord, point) / sizeof(double));
+static_assert(glsl_define(kPluginGlsl, "PLANE_UV_SCALE") == offsetof(PlaneRecord, point) / sizeof(double) + 3);
+static_assert(glsl_define(kPluginGlsl, "PLANE_NORMAL") == offsetof(PlaneRecord, normal) / sizeof(double));
+static_assert(glsl_define(kPluginGlsl, "PLANE_T1") == offsetof(PlaneRecord, t1) / sizeof(double));
+static_assert(glsl_define(kPluginGlsl, "PLANE_T2") == offsetof(PlaneRecord, t2) / sizeof(double));
 
 const double kDefaultUvScale[] = {1.0};
 
@@ -84,7 +91,8 @@ void surface(const void* record, const PrismRay* ray, const PrismHit* hit, Prism
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("plane", 0, kFields,
-                                                       sizeof(PlaneRecord), validate_nothing, pack, bounds, surface);
+                                                       sizeof(PlaneRecord), validate_nothing, pack, bounds, surface,
+                                                       kPluginGlsl, "plane");
 
 }  // namespace
 

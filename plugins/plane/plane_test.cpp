@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
 
@@ -139,6 +140,10 @@ TEST(PlaneTest, BoundsReportUnbounded) {
   Shape s = plane({0, 0, 0}, {0, 1, 0});
   double lo[3], hi[3];
   EXPECT_EQ(s.desc().bounds(s.record(), lo, hi), 0);
+}
+
+TEST(PlaneTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "plane", {}), "");
 }
 
 }  // namespace

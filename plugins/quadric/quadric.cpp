@@ -18,12 +18,16 @@
 //   one Newton step along the gradient in `surface`.
 // - clip_min/clip_max are coordinates (PRISM_FIELD_LENGTH): the core checks
 //   |x| <= 1e7 on the numbers only, and a null entry reads as -inf / +inf.
+// - GPU: quadric.glsl runs core/glsl/quadric.glsl, the GLSL double port of
+//   quadric_math.hpp that cylinder and cone run too (its record offsets are
+//   static_asserted there, against the same QuadricShape).
 #include <cmath>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
 #include "prism/sdk/quadric_math.hpp"
+#include "quadric.glsl.hpp"
 
 namespace {
 
@@ -71,8 +75,10 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
   write_surface(out, point, normal, 0.0, 0.0);
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<intersect_quadric_record>("quadric", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(QuadricRecord), validate, pack, bounds, surface);
+const PrismPrimitiveDesc kDesc =
+    describe_primitive<intersect_quadric_record>("quadric", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
+                                                 sizeof(QuadricRecord), validate, pack, bounds, surface, kPluginGlsl,
+                                                 "quadric");
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
 #include "prism/sdk/quadric_math.hpp"
@@ -277,6 +278,10 @@ TEST(QuadricTest, NanRayMisses) {
   Shape s = quadric(kUnitSphere);
   EXPECT_FALSE(s.intersect({NAN, 0, -5}, {0, 0, 1}));
   EXPECT_FALSE(s.intersect({0, 0, -5}, {NAN, NAN, NAN}));
+}
+
+TEST(QuadricTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "quadric", {"quadric"}), "");
 }
 
 }  // namespace

@@ -10,11 +10,13 @@
 //   inner/outer test (inclusive, on sqrt(x^2 + z^2) as the spec states it)
 //   is decided on an accurate point.
 // - surface: the stored point with y set to exactly 0.
+// - GPU: ring.glsl, the same method in GLSL double precision.
 #include <cmath>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
+#include "ring.glsl.hpp"
 
 namespace {
 
@@ -26,6 +28,8 @@ struct RingRecord {
   double pad[2];
 };
 static_assert(sizeof(RingRecord) % 16 == 0);
+static_assert(glsl_define(kPluginGlsl, "RING_INNER") == offsetof(RingRecord, inner) / sizeof(double));
+static_assert(glsl_define(kPluginGlsl, "RING_OUTER") == offsetof(RingRecord, outer) / sizeof(double));
 
 const double kDefaultInner[] = {0.0};
 
@@ -83,7 +87,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(RingRecord), validate, pack, bounds, surface);
+                                                       sizeof(RingRecord), validate, pack, bounds, surface,
+                                                       kPluginGlsl, "ring");
 
 }  // namespace
 

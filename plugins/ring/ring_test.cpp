@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <random>
+#include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
 
@@ -123,6 +124,10 @@ TEST(RingTest, NanRayMisses) {
   Shape s = ring(0.5, 1.0);
   EXPECT_FALSE(s.intersect({NAN, 1, 0}, {0, -1, 0}));
   EXPECT_FALSE(s.intersect({0, 1, 0}, {NAN, NAN, NAN}));
+}
+
+TEST(RingTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "ring", {}), "");
 }
 
 }  // namespace

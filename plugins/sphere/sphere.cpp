@@ -10,12 +10,14 @@
 // - surface: the point is re-formed from that foot (so its error is ~eps*r
 //   plus the rounding of t itself, not eps*|origin|) and re-projected onto
 //   the sphere with p *= r/|p| (pbrt-v4), far inside the spec's offset.
+// - GPU: sphere.glsl, the same method in GLSL double precision.
 #include <cmath>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
 #include "prism/sdk/sphere_math.hpp"
+#include "sphere.glsl.hpp"
 
 namespace {
 
@@ -26,6 +28,7 @@ struct SphereRecord {
   double pad;
 };
 static_assert(sizeof(SphereRecord) % 16 == 0);
+static_assert(glsl_define(kPluginGlsl, "SPHERE_RADIUS") == offsetof(SphereRecord, radius) / sizeof(double));
 
 const PrismField kFields[] = {positive_length("radius", 1, "radius of the sphere")};
 
@@ -65,7 +68,8 @@ void surface(const void* record, const PrismRay* ray, const PrismHit* hit, Prism
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("sphere", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(SphereRecord), validate_nothing, pack, bounds, surface);
+                                                       sizeof(SphereRecord), validate_nothing, pack, bounds, surface,
+                                                       kPluginGlsl, "sphere");
 
 }  // namespace
 

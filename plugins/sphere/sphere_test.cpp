@@ -3,6 +3,8 @@
 // re-centred robust discriminant).
 #include <gtest/gtest.h>
 
+#include <string_view>
+
 #include <cmath>
 #include <random>
 
@@ -52,8 +54,11 @@ TEST(SphereTest, DescriptorDeclaresOnlyRadiusAndIsTransformable) {
   EXPECT_EQ(radius->min, 0.0);
   EXPECT_EQ(find_field(desc, "center"), nullptr);
   EXPECT_EQ(desc.record_size % 16, 0u);
-  EXPECT_EQ(desc.glsl_source, nullptr);
   EXPECT_EQ(validation_error(desc, {1.0}), std::nullopt);
+}
+
+TEST(SphereTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "sphere", {}), "");
 }
 
 TEST(SphereTest, HitFromOutsideGivesNearSideNormalAndUv) {

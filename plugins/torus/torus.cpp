@@ -29,11 +29,14 @@
 // 5. surface: the stored point is re-projected onto the tube (nearest point
 //    of the core circle plus r along the radial direction) and the normal is
 //    that radial direction, which is parallel to the spec's gradient.
+// 6. GPU: torus.glsl, the same steps in GLSL double precision, with the
+//    Newton-bisection of core/glsl/roots.glsl (solve_bracketed's port).
 #include <cmath>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
+#include "torus.glsl.hpp"
 
 namespace {
 
@@ -45,6 +48,8 @@ struct TorusRecord {
   double pad[2];
 };
 static_assert(sizeof(TorusRecord) % 16 == 0);
+static_assert(glsl_define(kPluginGlsl, "TORUS_MAJOR") == offsetof(TorusRecord, major) / sizeof(double));
+static_assert(glsl_define(kPluginGlsl, "TORUS_MINOR") == offsetof(TorusRecord, minor) / sizeof(double));
 
 const PrismField kFields[] = {
     positive_length("major_radius", 1, "distance from the axis to the tube's centre circle (R)"),
@@ -225,7 +230,8 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("torus", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(TorusRecord), validate, pack, bounds, surface);
+                                                       sizeof(TorusRecord), validate, pack, bounds, surface,
+                                                       kPluginGlsl, "torus");
 
 }  // namespace
 

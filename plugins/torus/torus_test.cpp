@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
 
@@ -309,6 +310,10 @@ TEST(TorusTest, NanRayMisses) {
   Shape s = torus(1.0, 0.25);
   EXPECT_FALSE(s.intersect({NAN, 0, -5}, {0, 0, 1}));
   EXPECT_FALSE(s.intersect({0, 0, -5}, {NAN, NAN, NAN}));
+}
+
+TEST(TorusTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
+  EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "torus", {"roots"}), "");
 }
 
 }  // namespace

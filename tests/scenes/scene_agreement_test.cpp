@@ -1,6 +1,15 @@
 // Every scene under scenes/ renders to the same picture, up to rounding, on
 // every backend as on the reference backend (double precision, brute force).
-// Scenes render at a reduced size so the whole sweep stays quick.
+// Scenes render at their own size and spp, with the reference at the same
+// spp, so the comparison measures backend differences, not aliasing.
+//
+// Every backend: no NaN or Inf pixel, and at most 0.5 % of pixels differ by
+// more than 0.016 in any channel (OpenImageIO's ImageBufAlgo::compare).
+// Backends that promise double precision end to end (stats info
+// "precision": "double": the CPU backends) must also agree to 1e-5 with
+// every pixel's first-hit object id equal.
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -23,17 +32,25 @@ std::vector<std::string> scene_files() {
   return files;
 }
 
-prism::Image render(prism::Registry& registry, const std::string& backend, const prism::Scene& scene) {
+struct Rendered {
+  prism::Image image;
+  prism::BackendStats stats;
+};
+
+Rendered render(prism::Registry& registry, const std::string& backend, const prism::Scene& scene) {
   prism::RenderSettings settings;
   settings.image = scene.image;
-  // A quarter of the linear size (at least 16 px), one sample: enough to compare every feature.
-  settings.image.width = std::max(16, scene.image.width / 4);
-  settings.image.height = std::max(16, scene.image.height / 4);
-  settings.image.spp = 1;
   settings.aov_id = true;
   auto instance = registry.backend(backend)->create();
   instance->prepare(scene);
-  return instance->render(settings);
+  prism::Image image = instance->render(settings);
+  return {std::move(image), instance->stats()};
+}
+
+OIIO::ImageBuf to_imagebuf(const prism::Image& image) {
+  OIIO::ImageBuf buf(OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT));
+  buf.set_pixels(buf.roi(), OIIO::TypeDesc::FLOAT, image.rgb.data());
+  return buf;
 }
 
 class SceneAgreement : public testing::TestWithParam<std::tuple<std::string, std::string>> {};
@@ -43,21 +60,35 @@ TEST_P(SceneAgreement, MatchesReferenceUpToRounding) {
   if (!prism::test::require_backend_or_skip(backend)) return;
   prism::Registry registry;
   prism::Scene scene = prism::load_scene(fs::path(PRISM_SOURCE_DIR) / file, registry);
-  prism::Image expected = render(registry, "reference", scene);
-  prism::Image actual = render(registry, backend, scene);
+  const prism::Image expected = render(registry, "reference", scene).image;
+  const Rendered rendered = render(registry, backend, scene);
+  const prism::Image& actual = rendered.image;
   ASSERT_EQ(actual.rgb.size(), expected.rgb.size());
-  size_t id_mismatches = 0, nan_pixels = 0;
+  size_t id_mismatches = 0, nonfinite = 0;
   double worst = 0;
   for (size_t i = 0; i < expected.rgb.size(); ++i) {
-    if (std::isnan(actual.rgb[i])) ++nan_pixels;
+    if (!std::isfinite(actual.rgb[i])) ++nonfinite;
     worst = std::max(worst, double(std::abs(actual.rgb[i] - expected.rgb[i])));
   }
   for (size_t p = 0; p < expected.id.size(); ++p) id_mismatches += actual.id[p] != expected.id[p];
-  EXPECT_EQ(nan_pixels, 0u);
-  // Both CPU backends use the same double-precision intersectors and shading:
-  // only the order of float rounding may differ.
-  EXPECT_LE(worst, 1e-5) << file << " on " << backend;
-  EXPECT_EQ(id_mismatches, 0u) << file << " on " << backend;
+  EXPECT_EQ(nonfinite, 0u);
+  const OIIO::ImageBuf a = to_imagebuf(actual), b = to_imagebuf(expected);
+  const auto cmp = OIIO::ImageBufAlgo::compare(a, b, 0.016f, 0.016f, 0.0f, 0.0f);
+  ASSERT_FALSE(cmp.error);
+  const double pixels = double(actual.width) * actual.height;
+  RecordProperty("max_error", std::to_string(cmp.maxerror));
+  RecordProperty("pixels_over_0.016", std::to_string(cmp.nfail));
+  RecordProperty("id_mismatches", std::to_string(id_mismatches));
+  std::printf("%s on %s: max error %.3g, RMS %.3g, PSNR %.1f dB, %llu pixels > 0.016, %zu id mismatches of %.0f\n",
+              file.c_str(), backend.c_str(), cmp.maxerror, cmp.rms_error, cmp.PSNR,
+              static_cast<unsigned long long>(cmp.nfail), id_mismatches, pixels);
+  EXPECT_LE(double(cmp.nfail), 0.005 * pixels) << file << " on " << backend;
+  auto precision = rendered.stats.info.find("precision");
+  if (precision != rendered.stats.info.end() && precision->second == "double") {
+    // Same double-precision intersectors and shading: only the order of float rounding may differ.
+    EXPECT_LE(worst, 1e-5) << file << " on " << backend;
+    EXPECT_EQ(id_mismatches, 0u) << file << " on " << backend;
+  }
 }
 
 std::string name_of(const testing::TestParamInfo<SceneAgreement::ParamType>& info) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -19,6 +20,9 @@ namespace prism {
 
 struct RenderSettings {
   ImageSettings image;  // the scene's, with command-line overrides applied
+  // Renders from this camera instead of the scene's (an interactive viewer
+  // moves it every frame without preparing the scene again).
+  std::optional<Camera> camera;
   bool aov_id = false;
   bool aov_path = false;
   // Called with the fraction done (0..1) from any thread; may be empty.
@@ -52,6 +56,8 @@ struct BackendStats {
   uint64_t rays = 0;                         // every ray traced, all kinds
   std::map<std::string, uint64_t> rays_by_kind;  // camera, shadow, reflect, refract, ...
   std::map<std::string, double> ms;              // build, compile, render, ...
+  std::map<std::string, double> counters;        // e.g. GL compile/link calls
+  std::map<std::string, std::string> info;       // e.g. device name, program cache hit/miss
 };
 
 class Backend {
@@ -68,7 +74,7 @@ class Backend {
 
 extern "C" {
 
-#define PRISM_BACKEND_ABI_VERSION 1u
+#define PRISM_BACKEND_ABI_VERSION 2u
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
 typedef struct PrismBackendProbe {

@@ -107,8 +107,16 @@ typedef struct PrismPrimitiveDesc {
   /* Point, outward normal and uv of a hit returned by `intersect` for `ray`. */
   void (*surface)(const void* record, const PrismRay* ray, const PrismHit* hit, PrismSurface* out);
 
-  /* GPU slots, filled once a GPU backend consumes them; NULL until then. */
-  const char* glsl_source; /* defines <glsl_prefix>_intersect and <glsl_prefix>_surface */
+  /* GPU slots (NULL: the plugin has no GPU intersector). `glsl_source` is
+   * GLSL 4.50 placed after the core GLSL library (core/glsl/library.glsl)
+   * and defines, for `rec` the index of the record's first double in
+   * `prism_records` and the same local-frame ray the CPU functions get:
+   *   bool <glsl_prefix>_intersect(uint rec, PrismRay ray, double tmin, double tmax, out PrismHit hit);
+   *   void <glsl_prefix>_surface(uint rec, PrismRay ray, PrismHit hit, out PrismSurface s);
+   * with the semantics of `intersect` and `surface` above. A line
+   * `// prism:require <module>` asks for an optional core GLSL module
+   * (core/glsl/<module>.glsl); all other global names start with the prefix. */
+  const char* glsl_source;
   const char* glsl_prefix;
 } PrismPrimitiveDesc;
 

@@ -5,6 +5,9 @@
 // to the `quadric` object each stands for.
 #pragma once
 
+#include <cstddef>
+#include <string_view>
+
 #include "prism/primitive_abi.h"
 #include "prism/sdk/primitive_sdk.hpp"
 #include "prism/sdk/quadric_math.hpp"
@@ -18,6 +21,16 @@ struct AxialQuadricRecord {
   double pad[2];
 };
 static_assert(sizeof(AxialQuadricRecord) % 16 == 0);
+
+// Whether core/glsl/quadric.glsl (`module`, embedded by the plugins that
+// require it) reads the record offsets the C++ side writes.
+constexpr bool quadric_module_matches_records(std::string_view module) {
+  constexpr size_t shape = offsetof(AxialQuadricRecord, shape), d = sizeof(double);
+  return glsl_define(module, "PRISM_QUADRIC_COEF") == long((shape + offsetof(QuadricShape, coef)) / d) &&
+         glsl_define(module, "PRISM_QUADRIC_LO") == long((shape + offsetof(QuadricShape, lo)) / d) &&
+         glsl_define(module, "PRISM_QUADRIC_HI") == long((shape + offsetof(QuadricShape, hi)) / d) &&
+         glsl_define(module, "PRISM_AXIAL_QUADRIC_HEIGHT") == long(offsetof(AxialQuadricRecord, height) / d);
+}
 
 // Packs coefficients `coef` clipped to 0 <= y <= height.
 inline void pack_axial_quadric(const double coef[10], double radius, double height, void* record) {
@@ -42,10 +55,13 @@ inline void axial_quadric_surface(const void* record, const PrismRay*, const Pri
 // The descriptor of a plugin whose `pack` calls pack_axial_quadric.
 template <size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_axial_quadric(const char* type_name, const PrismField (&fields)[FieldCount],
-                                                    void (*pack)(const double*, void*)) {
+                                                    void (*pack)(const double*, void*),
+                                                    const char* glsl_source = nullptr,
+                                                    const char* glsl_prefix = nullptr) {
   return describe_primitive<intersect_quadric_record>(type_name, PRISM_PRIMITIVE_TRANSFORMABLE, fields,
                                                       sizeof(AxialQuadricRecord), validate_nothing, pack,
-                                                      axial_quadric_bounds, axial_quadric_surface);
+                                                      axial_quadric_bounds, axial_quadric_surface, glsl_source,
+                                                      glsl_prefix);
 }
 
 }  // namespace prism::sdk

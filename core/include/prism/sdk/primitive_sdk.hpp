@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
+#include <string_view>
 
 #include <glm/glm.hpp>
 
@@ -79,7 +80,8 @@ void intersect_batch(const void* record, size_t count, const PrismRay* rays, con
 }
 
 // A plugin's descriptor table from the parts that differ between plugins;
-// the batch query is the loop over `Intersect`, the GLSL slots stay empty.
+// the batch query is the loop over `Intersect`. `glsl_source` defines
+// `<glsl_prefix>_intersect` and `<glsl_prefix>_surface` (see primitive_abi.h).
 template <IntersectFn Intersect, size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t flags,
                                                 const PrismField (&fields)[FieldCount], uint32_t record_size,
@@ -87,7 +89,8 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                                                 void (*pack)(const double*, void*),
                                                 int (*bounds)(const void*, double*, double*),
                                                 void (*surface)(const void*, const PrismRay*, const PrismHit*,
-                                                                PrismSurface*)) {
+                                                                PrismSurface*),
+                                                const char* glsl_source = nullptr, const char* glsl_prefix = nullptr) {
   return PrismPrimitiveDesc{PRISM_PRIMITIVE_ABI_VERSION,
                             sizeof(PrismPrimitiveDesc),
                             type_name,
@@ -103,8 +106,8 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                             Intersect,
                             intersect_batch<Intersect>,
                             surface,
-                            nullptr,
-                            nullptr};
+                            glsl_source,
+                            glsl_prefix};
 }
 
 // Fills a PrismSurface from local point, normal and uv.
@@ -113,6 +116,37 @@ inline void write_surface(PrismSurface* out, const glm::dvec3& point, const glm:
   store3(normal, out->normal);
   out->uv[0] = u;
   out->uv[1] = v;
+}
+
+// The value of `#define NAME <integer>` in a GLSL source, or -1 when absent;
+// constexpr, so a plugin can static_assert that its GLSL record offsets are
+// the ones its C++ `pack` writes:
+//   static_assert(glsl_define(kPluginGlsl, "TORUS_MINOR") == offsetof(TorusRecord, minor) / 8);
+constexpr long glsl_define(std::string_view source, std::string_view name) {
+  // Plain index loops: string_view::find is not constant-evaluable under GCC's sanitizers.
+  constexpr char directive[] = "#define ";
+  const size_t directive_size = sizeof directive - 1;
+  auto matches_at = [&](size_t at, const char* text, size_t n) {
+    if (at + n > source.size()) return false;
+    for (size_t i = 0; i < n; ++i)
+      if (source[at + i] != text[i]) return false;
+    return true;
+  };
+  for (size_t at = 0; at < source.size(); ++at) {
+    if (!matches_at(at, directive, directive_size)) continue;
+    size_t pos = at + directive_size;
+    if (!matches_at(pos, name.data(), name.size())) continue;
+    pos += name.size();
+    if (pos >= source.size() || source[pos] != ' ') continue;
+    while (pos < source.size() && source[pos] == ' ') ++pos;
+    long value = 0;
+    bool digits = false;
+    for (; pos < source.size() && source[pos] >= '0' && source[pos] <= '9'; ++pos, digits = true)
+      value = value * 10 + (source[pos] - '0');
+    if (pos < source.size() && source[pos] == 'u') ++pos;
+    if (digits && (pos == source.size() || source[pos] == '\n' || source[pos] == ' ')) return value;
+  }
+  return -1;
 }
 
 }  // namespace prism::sdk

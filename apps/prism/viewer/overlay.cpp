@@ -1,0 +1,69 @@
+#include "overlay.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+namespace prism::viewer {
+
+void FrameRate::add(double frame_ms) {
+  if (!skipped_first_) {
+    skipped_first_ = true;
+    return;
+  }
+  ++frames_;
+  sum_ms_ += frame_ms;
+  // In the first window the running mean is shown; afterwards each completed
+  // window replaces the value.
+  if (sum_ms_ >= kWindowMs) {
+    shown_frames_ = frames_;
+    shown_ms_ = sum_ms_ / frames_;
+    frames_ = 0;
+    sum_ms_ = 0.0;
+    first_window_done_ = true;
+  } else if (!first_window_done_) {
+    shown_frames_ = frames_;
+    shown_ms_ = sum_ms_ / frames_;
+  }
+}
+
+std::string status_line(const FrameRate& rate, const std::string& backend, int width, int height, int max_chars) {
+  char text[3][160];
+  if (rate.has_value()) {
+    std::snprintf(text[0], sizeof text[0], "%.1f FPS  %.1f MS  %s  %dx%d", rate.fps(), rate.ms(), backend.c_str(),
+                  width, height);
+    std::snprintf(text[1], sizeof text[1], "%.1f FPS %.1f MS %s %dx%d", rate.fps(), rate.ms(), backend.c_str(), width,
+                  height);
+    std::snprintf(text[2], sizeof text[2], "%.0fFPS %.0fMS %s %dx%d", rate.fps(), rate.ms(), backend.c_str(), width,
+                  height);
+  } else {
+    std::snprintf(text[0], sizeof text[0], "-- FPS  %s  %dx%d", backend.c_str(), width, height);
+    std::snprintf(text[1], sizeof text[1], "-- FPS %s %dx%d", backend.c_str(), width, height);
+    std::snprintf(text[2], sizeof text[2], "--FPS %s %dx%d", backend.c_str(), width, height);
+  }
+  for (const char* candidate : text)
+    if (int(std::strlen(candidate)) <= max_chars) return candidate;
+  return text[2];
+}
+
+int chars_that_fit(int pixels, int scale) {
+  // n characters take (n * advance - 1 + 2 * padding) * scale pixels.
+  return std::max(0, (pixels / scale - 2 * kOverlayPadding + (kGlyphAdvance - kGlyphWidth)) / kGlyphAdvance);
+}
+
+int overlay_scale(int window_width) { return window_width >= 640 ? 2 : 1; }
+
+Rgba8Image overlay_image(const std::string& text, int scale, int max_width) {
+  Rgba8Image image;
+  image.width = std::max(1, std::min(text_width(text, scale) + 2 * kOverlayPadding * scale, max_width));
+  image.height = overlay_height(scale);
+  image.rgba.resize(size_t(image.width) * image.height * 4);
+  for (size_t p = 0; p < image.rgba.size(); p += 4) {
+    image.rgba[p + 0] = image.rgba[p + 1] = image.rgba[p + 2] = 0;
+    image.rgba[p + 3] = 160;
+  }
+  draw_text(image, kOverlayPadding * scale, kOverlayPadding * scale, text, scale, {255, 255, 255, 255});
+  return image;
+}
+
+}  // namespace prism::viewer

@@ -1,0 +1,113 @@
+// The std430 buffer layouts the generated kernels read, mirrored in C++.
+// backends/glsl/scene.glsl declares the same structs; every size and offset
+// here is static_asserted, so a change on one side that the other misses
+// fails to compile instead of rendering garbage.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace prism::gpu {
+
+// Storage-buffer binding points (at most 8: GL's guaranteed minimum of
+// shader storage blocks per compute shader).
+enum Binding : uint32_t {
+  kBindRecords = 0,    // double[]: every object's plugin record
+  kBindObjects = 1,    // GpuObject[]: BVH leaf order, then the unbounded objects
+  kBindNodes = 2,      // GpuNode[]
+  kBindMaterials = 3,  // GpuMaterial[]
+  kBindLights = 4,     // GpuLight[]
+  kBindTexels = 5,     // vec4[]: every texture's texels, one after another
+  kBindFrame = 6,      // GpuFrame, then dvec2 sample offsets[]
+  kBindOutput = 7,     // render: ray counters + GpuPixel[]; trace: GpuTraceRay[]
+  kBindingCount = 8
+};
+
+struct alignas(32) GpuObject {
+  double center[4];      // xyz; w unused
+  double columns[3][4];  // the columns of R (local -> world), xyz
+  uint32_t record;       // index of the record's first double
+  uint32_t type;         // index into the kernel's primitive types
+  uint32_t material;
+  uint32_t rotated;      // 1: apply `columns`
+  int32_t id;            // the object id of the scene file
+  int32_t pad[3];
+};
+static_assert(sizeof(GpuObject) == 160 && offsetof(GpuObject, record) == 128 && offsetof(GpuObject, id) == 144);
+
+// Bounds rounded outward to float (traversal tests them in double).
+struct GpuNode {
+  float lo[3];
+  uint32_t first;
+  float hi[3];
+  uint32_t count;
+};
+static_assert(sizeof(GpuNode) == 32);
+
+struct GpuMaterial {
+  float color[3];
+  float diffuse;
+  float absorb[3];
+  float specular;
+  float shininess;
+  float reflect;
+  float ior;
+  float pad;
+  float uv_scale[2];
+  float uv_offset[2];
+  int32_t texture[4];  // texel offset (-1: none), width, height, unused
+};
+static_assert(sizeof(GpuMaterial) == 80 && offsetof(GpuMaterial, texture) == 64);
+
+struct alignas(32) GpuLight {
+  double position[4];  // point: position, w radius; directional: unit direction of travel
+  float color[3];
+  float intensity;
+  float linear;
+  float quadratic;
+  uint32_t directional;
+  uint32_t pad;
+};
+static_assert(sizeof(GpuLight) == 64 && offsetof(GpuLight, color) == 32);
+
+struct alignas(32) GpuFrame {
+  double camera_position[4];
+  double camera_forward[4];
+  double camera_right[4];
+  double camera_up[4];
+  double tan_half_fov;
+  double aspect;
+  double pad0[2];
+  float ambient[4];
+  float shadow_ambient[4];
+  float background[4];
+  int32_t size[4];     // width, height, spp, max_depth
+  int32_t counts[4];   // objects, bounded objects (the BVH's), lights, nodes
+  int32_t flags[4];    // x: aov path wanted, y: trace ray count
+  int32_t cubemap[6][4];  // per face: texel offset, width, height, unused
+  // followed by dvec2 sample_offsets[spp] (offset 352)
+};
+static_assert(sizeof(GpuFrame) == 352 && offsetof(GpuFrame, ambient) == 160 && offsetof(GpuFrame, cubemap) == 256);
+
+struct alignas(16) GpuPixel {
+  float rgb[3];
+  float id;
+  float path;
+  float pad[3];
+};
+static_assert(sizeof(GpuPixel) == 32);
+
+// Render output: the ray counters come first (one per ray kind), then pixels.
+constexpr size_t kRayCounterCount = 8;
+constexpr size_t kOutputHeaderBytes = 32;
+
+struct alignas(32) GpuTraceRay {
+  double origin_tmin[4];  // in: origin, tmin
+  double dir[4];          // in: unit direction
+  double t_normal[4];     // out: t, normal
+  int32_t id[4];          // out: x id
+  int32_t pad[4];
+};
+static_assert(sizeof(GpuTraceRay) == 128);
+
+}  // namespace prism::gpu

@@ -1,0 +1,80 @@
+// Prism GPU kernels, part 3 of 3: the entry points. PRISM_MODE_TRACE builds
+// the `prism trace` kernel (one invocation per ray, the same closest-hit
+// code the renderer uses); otherwise one invocation renders one pixel of the
+// current tile. The tile origin comes from PRISM_TILE_ORIGIN, which the
+// backend defines (a uniform in OpenGL, a push constant in Vulkan).
+
+layout(local_size_x = PRISM_LOCAL_SIZE_X, local_size_y = PRISM_LOCAL_SIZE_Y, local_size_z = 1) in;
+
+#ifdef PRISM_MODE_TRACE
+
+struct PrismTraceRay {
+  dvec4 origin_tmin;
+  dvec4 dir;
+  dvec4 t_normal;
+  ivec4 id;
+  ivec4 pad;
+};
+layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismTraceBuffer { PrismTraceRay prism_trace_rays[]; };
+
+void main() {
+  uint i = gl_GlobalInvocationID.x + uint(PRISM_TILE_ORIGIN.x);
+  if (i >= uint(prism_frame.flags.y)) return;
+  PrismRay ray;
+  ray.origin = prism_trace_rays[i].origin_tmin.xyz;
+  ray.dir = prism_trace_rays[i].dir.xyz;
+  PrismClosest hit = prism_closest(ray, prism_trace_rays[i].origin_tmin.w);
+  dvec3 normal = dvec3(0.0LF);
+  if (hit.id >= 0) {
+    normal = prism_world_surface(ray, hit).normal;
+  } else if (hit.id != PRISM_MISS_ID) {  // a light sphere: its outward normal at the hit
+    normal = normalize(ray.origin + hit.t * ray.dir - prism_lights[-2 - hit.id].position.xyz);
+  }
+  prism_trace_rays[i].t_normal = dvec4(hit.t, normal);
+  prism_trace_rays[i].id = ivec4(hit.id, 0, 0, 0);
+}
+
+#else
+
+struct PrismPixel {
+  vec4 rgb_id;
+  vec4 path;
+};
+layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismOutputBuffer {
+  uint prism_counters[8];
+  PrismPixel prism_pixels[];
+};
+
+// The format's camera ray through pixel (i, j) at sample offset `offset`.
+PrismRay prism_camera_ray(int i, int j, dvec2 offset) {
+  double width = double(prism_frame.size.x), height = double(prism_frame.size.y);
+  double u = ((double(i) + offset.x) / width * 2.0LF - 1.0LF) * prism_frame.tan_half_fov * prism_frame.aspect;
+  double v = (1.0LF - (double(j) + offset.y) / height * 2.0LF) * prism_frame.tan_half_fov;
+  PrismRay ray;
+  ray.origin = prism_frame.camera_position.xyz;
+  ray.dir = normalize(prism_frame.camera_forward.xyz + u * prism_frame.camera_right.xyz + v * prism_frame.camera_up.xyz);
+  return ray;
+}
+
+void main() {
+  ivec2 local = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 pixel = PRISM_TILE_ORIGIN.xy + local;
+  if (local.x >= PRISM_TILE_ORIGIN.z || local.y >= PRISM_TILE_ORIGIN.w) return;
+  for (int k = 0; k < PRISM_RAY_KINDS; ++k) prism_ray_counts[k] = 0u;
+  // Samples are summed in order (as on the CPU), so the pixel never depends on scheduling.
+  vec3 sum = vec3(0.0);
+  PrismSample first;
+  for (int k = 0; k < prism_frame.size.z; ++k) {
+    PrismRay ray = prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]);
+    PrismSample s = prism_trace_sample(ray, prism_frame.size.w, k == 0 && prism_frame.flags.x != 0);
+    if (k == 0) first = s;
+    sum += s.radiance;
+  }
+  uint index = uint(local.y * PRISM_TILE_ORIGIN.z + local.x);
+  prism_pixels[index].rgb_id = vec4(sum / float(prism_frame.size.z), float(first.first_id));
+  prism_pixels[index].path = vec4(float(first.path_hash), 0.0, 0.0, 0.0);
+  for (int k = 0; k < PRISM_RAY_KINDS; ++k)
+    if (prism_ray_counts[k] != 0u) atomicAdd(prism_counters[k], prism_ray_counts[k]);
+}
+
+#endif

@@ -1,0 +1,38 @@
+// The kernel generator: assembles one compute shader from the core GLSL
+// library, only the primitive plugins' intersectors a scene uses, the shared
+// scene/shading/kernel sources, and only the PRISM_FEATURE_* switches the
+// scene needs. Both GPU backends call it; only `api_glue` differs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "gpu_scene.hpp"
+
+namespace prism::gpu {
+
+struct KernelOptions {
+  bool trace = false;         // the `prism trace` kernel instead of the renderer
+  bool all_features = false;  // compile every feature in, whatever the scene uses
+  // Backend glue placed after the defines: must define PRISM_TILE_ORIGIN (an
+  // ivec4: x0, y0, tile width, tile height; for trace x is the first ray).
+  std::string api_glue;
+  int local_size_x = 8;
+  int local_size_y = 8;
+};
+
+struct KernelSource {
+  std::string text;
+  std::vector<std::string> features;  // what `--stats` reports as kernel_features
+};
+
+KernelSource generate_kernel(const PackedScene& scene, const KernelOptions& options);
+
+// Whether PRISM_KERNEL_FEATURES=all asks for every feature (the test of the
+// generator's specialisation renders the same scene both ways).
+bool all_features_forced();
+
+// FNV-1a 64-bit of `text`, as 16 hex digits: program cache keys.
+std::string hash_hex(const std::string& text);
+
+}  // namespace prism::gpu

@@ -1,0 +1,75 @@
+// The kernel generator leaves out what a scene does not use: intersectors of
+// absent primitive types and features the scene never needs.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "kernel_source.hpp"
+#include "prism/scene_loader.hpp"
+
+namespace prism::gpu {
+namespace {
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+Scene load(Registry& registry, const std::string& json) { return load_scene_from_string(json, ".", registry); }
+
+const char* kSpheresOnly = R"({"prism": 1, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+  "objects": [{"type": "sphere", "radius": 1}, {"type": "sphere", "center": [2, 0, 0], "radius": 0.5}]})";
+
+TEST(KernelSource, SphereOnlySceneCarriesNoTorusCode) {
+  Registry registry;
+  Scene scene = load(registry, kSpheresOnly);
+  PackedScene packed = pack_scene(scene);
+  KernelSource kernel = generate_kernel(packed, {});
+  EXPECT_NE(kernel.text.find("sphere_intersect"), std::string::npos);
+  // The torus plugin's GLSL names all start with its prefix.
+  for (const char* symbol : {"torus_", "TORUS_", "quadric_", "box_", "plane_", "ring_", "cylinder_", "cone_"})
+    EXPECT_EQ(kernel.text.find(symbol), std::string::npos) << symbol;
+  EXPECT_EQ(kernel.features, std::vector<std::string>{"primitive:sphere"});
+}
+
+TEST(KernelSource, OnlyTheFeaturesUsedAreDefined) {
+  Registry registry;
+  Scene scene = load(registry, R"({"prism": 1, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+    "materials": {"glass": {"ior": 1.5, "absorb": [0.1, 0, 0]}, "shiny": {"specular": 0.5}},
+    "lights": [{"type": "point", "position": [0, 5, 0], "radius": 0.1}],
+    "objects": [{"type": "sphere", "radius": 1, "material": "glass"},
+                {"type": "sphere", "radius": 1, "center": [3, 0, 0], "material": "shiny"}]})");
+  KernelSource kernel = generate_kernel(pack_scene(scene), {});
+  for (const char* f : {"point_lights", "light_spheres", "dielectrics", "absorption", "specular"})
+    EXPECT_TRUE(has(kernel.features, f)) << f;
+  for (const char* f : {"directional_lights", "reflection", "textures", "alpha", "skybox"})
+    EXPECT_FALSE(has(kernel.features, f)) << f;
+  EXPECT_NE(kernel.text.find("#define PRISM_FEATURE_DIELECTRICS 1"), std::string::npos);
+  EXPECT_EQ(kernel.text.find("#define PRISM_FEATURE_TEXTURES"), std::string::npos);
+}
+
+TEST(KernelSource, ForcedFeaturesCompileEverythingIn) {
+  Registry registry;
+  Scene scene = load(registry, kSpheresOnly);
+  KernelOptions options;
+  options.all_features = true;
+  KernelSource kernel = generate_kernel(pack_scene(scene), options);
+  for (Feature f : all_features()) EXPECT_NE(kernel.text.find("#define " + feature_macro(f) + " 1"), std::string::npos);
+}
+
+TEST(KernelSource, TraceKernelLeavesShadingOut) {
+  Registry registry;
+  Scene scene = load(registry, kSpheresOnly);
+  KernelOptions options;
+  options.trace = true;
+  KernelSource kernel = generate_kernel(pack_scene(scene), options);
+  EXPECT_NE(kernel.text.find("#define PRISM_MODE_TRACE 1"), std::string::npos);
+  EXPECT_EQ(kernel.text.find("===== backends/glsl/shading.glsl"), std::string::npos);
+  EXPECT_EQ(kernel.text.find("vec3 prism_local_light("), std::string::npos);
+}
+
+TEST(KernelSource, HashIsFnv1a64) {
+  // FNV-1a 64 test vectors (Fowler/Noll/Vo reference values).
+  EXPECT_EQ(hash_hex(""), "cbf29ce484222325");
+  EXPECT_EQ(hash_hex("a"), "af63dc4c8601ec8c");
+}
+
+}  // namespace
+}  // namespace prism::gpu

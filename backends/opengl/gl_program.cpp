@@ -1,0 +1,198 @@
+#include "gl_program.hpp"
+
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <vector>
+
+#include "kernel_source.hpp"
+#include "prism/errors.hpp"
+#include "prism/image_io.hpp"
+
+namespace prism::gl {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// Cache file: this header, then the binary. The checksum covers the binary,
+// the key guards against a hash-named file holding another program.
+struct CacheHeader {
+  char magic[8];  // "PRISMGLB"
+  uint32_t version;
+  uint32_t format;  // the driver's binary format enum
+  uint64_t length;
+  uint64_t checksum;  // FNV-1a 64 of the binary
+  char key[16];
+};
+constexpr uint32_t kCacheVersion = 1;
+
+uint64_t fnv1a(const char* data, size_t n) {
+  uint64_t h = 14695981039346656037ull;
+  for (size_t i = 0; i < n; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+bool linked(GLuint program) {
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  return ok == GL_TRUE;
+}
+
+std::string program_log(GLuint program) {
+  GLint length = 0;
+  glGetProgramiv(program, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  glGetProgramInfoLog(program, length, nullptr, log.data());
+  return log.c_str();
+}
+
+std::string shader_log(GLuint shader) {
+  GLint length = 0;
+  glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+  std::string log(size_t(std::max(length, 1)), '\0');
+  glGetShaderInfoLog(shader, length, nullptr, log.data());
+  return log.c_str();
+}
+
+// Keeps the generated source of a failed build where the user can read it.
+std::string save_failed_source(const std::string& source, const std::string& key) {
+  fs::path dir = program_cache_dir();
+  if (dir.empty()) dir = fs::temp_directory_path();
+  fs::path file = dir / ("failed-" + key + ".comp");
+  try {
+    fs::create_directories(dir);
+    write_text_file_atomically(file, source);
+    return file.string();
+  } catch (const std::exception&) {
+    return "(not saved)";
+  }
+}
+
+GLuint compile_and_link(const std::string& source, const std::string& key, ProgramStats& stats) {
+  GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  ++stats.compile_calls;
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    std::string log = shader_log(shader);
+    glDeleteShader(shader);
+    throw RuntimeError("the generated GLSL kernel does not compile (source saved to " +
+                       save_failed_source(source, key) + ", line numbers refer to it):\n" + log);
+  }
+  GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glProgramParameteri(program, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
+  glLinkProgram(program);
+  ++stats.link_calls;
+  glDetachShader(program, shader);
+  glDeleteShader(shader);
+  if (!linked(program)) {
+    std::string log = program_log(program);
+    glDeleteProgram(program);
+    throw RuntimeError("the generated GLSL kernel does not link (source saved to " +
+                       save_failed_source(source, key) + "):\n" + log);
+  }
+  return program;
+}
+
+// Loads a cached binary; 0 with stats.cache set to why when it cannot.
+GLuint load_cached(const fs::path& file, const std::string& key, ProgramStats& stats) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) {
+    stats.cache = "miss";
+    return 0;
+  }
+  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CacheHeader header{};
+  if (bytes.size() < sizeof header) {
+    stats.cache = "corrupt";
+    return 0;
+  }
+  std::memcpy(&header, bytes.data(), sizeof header);
+  const char* data = bytes.data() + sizeof header;
+  const size_t length = bytes.size() - sizeof header;
+  if (std::memcmp(header.magic, "PRISMGLB", 8) != 0 || header.version != kCacheVersion || header.length != length ||
+      std::memcmp(header.key, key.data(), sizeof header.key) != 0 || header.checksum != fnv1a(data, length)) {
+    stats.cache = "corrupt";
+    return 0;
+  }
+  GLuint program = glCreateProgram();
+  glProgramBinary(program, header.format, data, GLsizei(length));
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  if (!linked(program)) {  // the driver refuses it: another driver version wrote it
+    glDeleteProgram(program);
+    stats.cache = "stale";
+    return 0;
+  }
+  stats.cache = "hit";
+  return program;
+}
+
+void store_cached(GLuint program, const fs::path& file, const std::string& key) {
+  GLint length = 0;
+  glGetProgramiv(program, GL_PROGRAM_BINARY_LENGTH, &length);
+  if (length <= 0) return;
+  std::vector<char> binary(static_cast<size_t>(length));
+  GLenum format = 0;
+  glGetProgramBinary(program, length, nullptr, &format, binary.data());
+  if (glGetError() != GL_NO_ERROR) return;
+  CacheHeader header{};
+  std::memcpy(header.magic, "PRISMGLB", 8);
+  header.version = kCacheVersion;
+  header.format = format;
+  header.length = binary.size();
+  header.checksum = fnv1a(binary.data(), binary.size());
+  std::memcpy(header.key, key.data(), sizeof header.key);
+  std::string content(reinterpret_cast<const char*>(&header), sizeof header);
+  content.append(binary.data(), binary.size());
+  try {
+    fs::create_directories(file.parent_path());
+    write_text_file_atomically(file, content);
+  } catch (const std::exception&) {
+    // A cache that cannot be written only costs the next run a compile.
+  }
+}
+
+}  // namespace
+
+fs::path program_cache_dir() {
+  if (const char* dir = std::getenv("PRISM_CACHE_DIR"); dir && *dir) return fs::path(dir) / "opengl";
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "prism" / "opengl";
+  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "prism" / "opengl";
+  return {};
+}
+
+GLuint build_program(const std::string& source, const std::string& driver_identity, ProgramStats& stats) {
+  auto start = std::chrono::steady_clock::now();
+  const std::string key = gpu::hash_hex(source + '\n' + driver_identity);
+  GLint formats = 0;
+  glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
+  const fs::path dir = program_cache_dir();
+  GLuint program = 0;
+  if (formats <= 0) {
+    stats.cache = "unsupported";
+  } else if (dir.empty()) {
+    stats.cache = "disabled";
+  } else {
+    stats.cache_file = dir / (key + ".bin");
+    program = load_cached(stats.cache_file, key, stats);
+  }
+  if (program == 0) {
+    program = compile_and_link(source, key, stats);
+    if (!stats.cache_file.empty()) store_cached(program, stats.cache_file, key);
+  }
+  stats.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return program;
+}
+
+}  // namespace prism::gl

@@ -1,0 +1,22 @@
+// Cylinder, GPU intersector: the quadric [1,0,1,0,0,0,0,0,0,-radius^2]
+// clipped to 0 <= y <= height, run by the core module `quadric`
+// (core/glsl/quadric.glsl), the GLSL port of prism/sdk/quadric_math.hpp and
+// axial_quadric.hpp that the quadric plugin runs too: t and the normal are
+// those of the equivalent `quadric` object, on the GPU as on the CPU.
+// Method: origin re-centred at the foot of the perpendicular, stable roots,
+// clip test on the point formed in that frame, one Newton step onto the
+// surface. Double: a camera 1e6 away loses o - c itself in float32
+// (shared/notes/numerics.md, Quadratics / Huge objects); only the uv
+// azimuth is float. The record is the AxialQuadricRecord whose offsets the
+// module defines and cylinder.cpp static_asserts.
+//
+// prism:require quadric
+
+bool cylinder_intersect(uint rec, PrismRay ray, double tmin, double tmax, out PrismHit hit) {
+  return prism_quadric_intersect(rec, ray, tmin, tmax, hit);
+}
+
+// u = 0.5 + atan2(z, x)/2pi, v = y/height.
+void cylinder_surface(uint rec, PrismRay ray, PrismHit hit, out PrismSurface s) {
+  prism_axial_quadric_surface(rec, hit, s);
+}

@@ -1,0 +1,185 @@
+#!/usr/bin/env bash
+# Compiles every primitive plugin's GLSL (plugins/<type>/<type>.glsl) the way
+# the kernel generator assembles it: a header, core/glsl/library.glsl, each
+# core module the plugin asks for with `// prism:require <module>` (once),
+# the plugin's source, and a main() that calls <type>_intersect and
+# <type>_surface and stores their results (so nothing is dead-stripped).
+# Each shader is compiled for OpenGL (GLSL front end, and SPIR-V for OpenGL)
+# and for Vulkan (SPIR-V, checked with spirv-val when present); then all
+# plugins together in one shader, which catches name clashes between them.
+# Also checks the naming rule: every global name a plugin declares starts
+# with its type name (torus_..., TORUS_..., Torus...), every one a core
+# module declares with prism/PRISM/Prism.
+#
+#   scripts/check_plugin_glsl.sh [plugin ...]    (default: every plugin)
+#
+# Needs glslangValidator (Debian: glslang-tools). Exits non-zero on any failure.
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+glsl_dir="$root/core/glsl"
+
+if ! command -v glslangValidator >/dev/null; then
+  echo "check_plugin_glsl: glslangValidator not found (apt-get install glslang-tools)" >&2
+  exit 1
+fi
+have_spirv_val=0
+command -v spirv-val >/dev/null && have_spirv_val=1
+
+work="$(mktemp -d)"
+trap 'rm -rf "$work"' EXIT
+
+if [[ $# -gt 0 ]]; then
+  plugins=("$@")
+else
+  plugins=()
+  for f in "$root"/plugins/*/*.glsl; do
+    name="$(basename "$f" .glsl)"
+    [[ "$(basename "$(dirname "$f")")" == "$name" ]] && plugins+=("$name")
+  done
+fi
+
+failures=0
+fail() {
+  echo "FAIL: $*" >&2
+  failures=$((failures + 1))
+}
+
+# Modules a source asks for, in order of appearance.
+required_modules() { sed -n 's|^// prism:require \([A-Za-z0-9_]*\)[[:space:]]*$|\1|p' "$1"; }
+
+# Global names declared at column 0: #define NAME, struct NAME, and
+# `[const] TYPE NAME` followed by ( = ; or [.
+global_names() {
+  sed -n -e 's|^#define \([A-Za-z_][A-Za-z0-9_]*\).*|\1|p' \
+    -e 's|^struct \([A-Za-z_][A-Za-z0-9_]*\).*|\1|p' \
+    -e 's|^\(const \)\{0,1\}[A-Za-z_][A-Za-z0-9_]* \([A-Za-z_][A-Za-z0-9_]*\) *[(=;[].*|\2|p' "$1"
+}
+
+check_names() {  # file prefix
+  local file="$1" prefix="$2" name lower
+  while read -r name; do
+    [[ -z "$name" ]] && continue
+    lower="$(tr '[:upper:]' '[:lower:]' <<<"$name")"
+    if [[ "$lower" != "$prefix"* ]]; then
+      fail "$file: global name '$name' does not start with '$prefix'"
+    fi
+  done < <(global_names "$file")
+}
+
+header() {
+  cat <<'EOF'
+#version 450
+#define PRISM_BINDING_RECORDS 0
+layout(local_size_x = 1) in;
+EOF
+}
+
+# Appends the body of main() for one plugin, reading and writing slot `k`.
+main_calls() {  # prefix index
+  local p="$1" k="$2"
+  cat <<EOF
+  {
+    uint base = ${k}u * 20u;
+    PrismRay ray;
+    ray.origin = dvec3(check_io[base + 0u], check_io[base + 1u], check_io[base + 2u]);
+    ray.dir = dvec3(check_io[base + 3u], check_io[base + 4u], check_io[base + 5u]);
+    PrismHit hit;
+    bool found = ${p}_intersect(uint(check_io[base + 6u]), ray, check_io[base + 7u], check_io[base + 8u], hit);
+    PrismSurface s;
+    ${p}_surface(uint(check_io[base + 6u]), ray, hit, s);
+    check_io[base + 9u] = found ? hit.t : -1.0LF;
+    check_io[base + 10u] = double(hit.part);
+    check_io[base + 11u] = s.point.x + s.point.y + s.point.z;
+    check_io[base + 12u] = s.normal.x + s.normal.y + s.normal.z;
+    check_io[base + 13u] = s.uv.x + s.uv.y + hit.data.x + hit.data.y + hit.data.z;
+  }
+EOF
+}
+
+# Writes the shader for the given plugins to $1.
+assemble() {
+  local out="$1" p m
+  shift
+  local -a modules=()
+  for p in "$@"; do
+    while read -r m; do
+      [[ -z "$m" ]] && continue
+      [[ " ${modules[*]-} " == *" $m "* ]] || modules+=("$m")
+    done < <(required_modules "$root/plugins/$p/$p.glsl")
+  done
+  {
+    header
+    cat "$glsl_dir/library.glsl"
+    for m in ${modules[@]+"${modules[@]}"}; do
+      if [[ ! -f "$glsl_dir/$m.glsl" ]]; then
+        echo "#error missing core module $m"
+      else
+        cat "$glsl_dir/$m.glsl"
+      fi
+    done
+    for p in "$@"; do cat "$root/plugins/$p/$p.glsl"; done
+    echo 'layout(std430, binding = 1) buffer CheckIo { double check_io[]; };'
+    echo 'void main() {'
+    local k=0
+    for p in "$@"; do
+      main_calls "$p" "$k"
+      k=$((k + 1))
+    done
+    echo '}'
+  } >"$out"
+}
+
+compile() {  # label shader
+  local label="$1" src="$2" log="$work/log"
+  if ! glslangValidator -S comp "$src" >"$log" 2>&1 || grep -qi 'warning' "$log"; then
+    cat "$log" >&2
+    fail "$label: OpenGL GLSL"
+  fi
+  if ! glslangValidator -G -S comp -o "$work/gl.spv" "$src" >"$log" 2>&1 || grep -qi 'warning' "$log"; then
+    cat "$log" >&2
+    fail "$label: SPIR-V for OpenGL (-G)"
+  fi
+  if ! glslangValidator -V -S comp --target-env vulkan1.1 -o "$work/vk.spv" "$src" >"$log" 2>&1 ||
+    grep -qi 'warning' "$log"; then
+    cat "$log" >&2
+    fail "$label: SPIR-V for Vulkan (-V)"
+  elif [[ $have_spirv_val == 1 ]] && ! spirv-val --target-env vulkan1.1 "$work/vk.spv" >"$log" 2>&1; then
+    cat "$log" >&2
+    fail "$label: spirv-val (Vulkan)"
+  fi
+}
+
+for m in "$glsl_dir"/*.glsl; do
+  [[ "$(basename "$m")" == library.glsl ]] && continue
+  check_names "$m" prism
+done
+
+for p in "${plugins[@]}"; do
+  src="$root/plugins/$p/$p.glsl"
+  if [[ ! -f "$src" ]]; then
+    fail "$p: no $src"
+    continue
+  fi
+  before=$failures
+  check_names "$src" "$p"
+  while read -r m; do
+    [[ -z "$m" || -f "$glsl_dir/$m.glsl" ]] || fail "$p: requires missing module core/glsl/$m.glsl"
+  done < <(required_modules "$src")
+  assemble "$work/$p.comp" "$p"
+  compile "$p" "$work/$p.comp"
+  [[ $failures == "$before" ]] && echo "ok: $p"
+done
+
+if [[ ${#plugins[@]} -gt 1 ]]; then
+  before=$failures
+  assemble "$work/all.comp" "${plugins[@]}"
+  compile "all plugins together" "$work/all.comp"
+  [[ $failures == "$before" ]] && echo "ok: all plugins in one shader (${plugins[*]})"
+fi
+
+if [[ $failures -gt 0 ]]; then
+  echo "check_plugin_glsl: $failures failure(s)" >&2
+  exit 1
+fi
+echo "check_plugin_glsl: every plugin's GLSL compiles for OpenGL and Vulkan"

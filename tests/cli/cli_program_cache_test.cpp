@@ -1,0 +1,102 @@
+// GPU program caches, counted rather than timed: a backend that reports a
+// `program_cache` in --stats must, on the second render of the same scene,
+// make no compile or link call of its own (every counter named *compile* or
+// *link* is 0) and report a cache hit with the same image; a cache file that
+// is corrupt is detected, rebuilt (compile calls again) and rewritten.
+// Mesa's own shader cache is pointed at a fresh folder (llvmpipe offers a
+// program-binary format only while its disk cache is on).
+#include <cstdlib>
+#include <nlohmann/json.hpp>
+
+#include "cli_harness.hpp"
+#include "test_support.hpp"
+
+namespace prism::cli_test {
+namespace {
+
+using nlohmann::json;
+
+class ProgramCache : public CliTest, public testing::WithParamInterface<std::string> {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    ::setenv("MESA_SHADER_CACHE_DIR", path("mesa-cache").c_str(), 1);
+    ::setenv("PRISM_CACHE_DIR", path("prism-cache").c_str(), 1);
+  }
+
+  // Renders the scene; returns its --stats, or null when the backend cannot run here.
+  json render(const std::string& backend, const std::string& out) {
+    RunResult r = run({"render", path("scene.json").string(), "-b", backend, "-o", path(out).string(), "--stats",
+                       path(out + ".json").string()});
+    if (!prism::test::backend_required(backend) && r.exited && r.status == 1) return nullptr;
+    EXPECT_TRUE(ExitedWith(r, 0));
+    return json::parse(read_file(path(out + ".json")));
+  }
+};
+
+double compile_and_link_calls(const json& stats) {
+  double calls = 0;
+  if (!stats.contains("counters")) return 0;
+  for (const auto& [name, value] : stats["counters"].items())
+    if (name.find("compile") != std::string::npos || name.find("link") != std::string::npos) calls += value.get<double>();
+  return calls;
+}
+
+TEST_P(ProgramCache, SecondRenderCompilesNothingAndCorruptFilesAreRebuilt) {
+  const std::string backend = GetParam();
+  SceneText scene;
+  scene.image = R"({"width": 32, "height": 24})";
+  write("scene.json", scene.text());
+  json first = render(backend, "first.png");
+  if (first.is_null()) GTEST_SKIP() << backend << " cannot run here";
+  if (!first.contains("info") || !first["info"].contains("program_cache"))
+    GTEST_SKIP() << backend << " keeps no program cache";
+  ASSERT_NE(first["info"]["program_cache"], "unsupported") << "the driver offers no program binary format";
+  EXPECT_EQ(first["info"]["program_cache"], "miss");
+  EXPECT_GT(compile_and_link_calls(first), 0);
+
+  json second = render(backend, "second.png");
+  EXPECT_EQ(second["info"]["program_cache"], "hit");
+  EXPECT_EQ(compile_and_link_calls(second), 0);
+  EXPECT_EQ(read_file(path("first.png")), read_file(path("second.png")));
+
+  // Corrupt the cached program: flip bytes in its middle.
+  const fs::path cache_file = second["info"]["program_cache_file"].get<std::string>();
+  std::string bytes = read_file(cache_file);
+  ASSERT_GT(bytes.size(), 64u);
+  for (size_t i = bytes.size() / 2; i < bytes.size() / 2 + 16; ++i) bytes[i] = char(~bytes[i]);
+  write_file(cache_file, bytes);
+  json third = render(backend, "third.png");
+  EXPECT_EQ(third["info"]["program_cache"], "corrupt");
+  EXPECT_GT(compile_and_link_calls(third), 0);
+  EXPECT_EQ(read_file(path("first.png")), read_file(path("third.png")));
+
+  // A truncated file is caught too, and the rewritten cache hits again.
+  write_file(cache_file, bytes.substr(0, 10));
+  EXPECT_EQ(render(backend, "fourth.png")["info"]["program_cache"], "corrupt");
+  EXPECT_EQ(render(backend, "fifth.png")["info"]["program_cache"], "hit");
+
+  // A well-formed file whose binary the driver refuses (as after a driver
+  // update) is "stale": the OpenGL cache's header (backends/opengl/gl_program.cpp)
+  // is 48 bytes with an FNV-1a checksum of the binary at offset 24.
+  std::string file = read_file(cache_file);
+  if (file.compare(0, 8, "PRISMGLB") != 0) return;
+  for (size_t i = 48; i < file.size(); ++i) file[i] = char(i * 7);
+  uint64_t h = 14695981039346656037ull;
+  for (size_t i = 48; i < file.size(); ++i) {
+    h ^= static_cast<unsigned char>(file[i]);
+    h *= 1099511628211ull;
+  }
+  file.replace(24, 8, reinterpret_cast<const char*>(&h), 8);
+  write_file(cache_file, file);
+  json stale = render(backend, "sixth.png");
+  EXPECT_EQ(stale["info"]["program_cache"], "stale");
+  EXPECT_GT(compile_and_link_calls(stale), 0);
+  EXPECT_EQ(read_file(path("first.png")), read_file(path("sixth.png")));
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ProgramCache, testing::ValuesIn(backends_built()),
+                         [](const testing::TestParamInfo<std::string>& info) { return info.param; });
+
+}  // namespace
+}  // namespace prism::cli_test
