@@ -116,12 +116,17 @@ KernelSource generate_kernel(const PackedScene& scene, const KernelOptions& opti
   return result;
 }
 
-std::string hash_hex(const std::string& text) {
+uint64_t fnv1a64(const char* data, size_t size) {
   uint64_t h = 14695981039346656037ull;
-  for (unsigned char c : text) {
-    h ^= c;
+  for (size_t i = 0; i < size; ++i) {
+    h ^= static_cast<unsigned char>(data[i]);
     h *= 1099511628211ull;
   }
+  return h;
+}
+
+std::string hash_hex(const std::string& text) {
+  const uint64_t h = fnv1a64(text.data(), text.size());
   char buffer[17];
   std::snprintf(buffer, sizeof buffer, "%016llx", static_cast<unsigned long long>(h));
   return buffer;

@@ -4,6 +4,8 @@
 // scene needs. Both GPU backends call it; only `api_glue` differs.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,7 +34,9 @@ KernelSource generate_kernel(const PackedScene& scene, const KernelOptions& opti
 // generator's specialisation renders the same scene both ways).
 bool all_features_forced();
 
-// FNV-1a 64-bit of `text`, as 16 hex digits: program cache keys.
+// FNV-1a 64-bit: program cache keys and cache-file checksums.
+uint64_t fnv1a64(const char* data, size_t size);
+// fnv1a64 of `text` as 16 hex digits.
 std::string hash_hex(const std::string& text);
 
 }  // namespace prism::gpu

@@ -29,15 +29,6 @@ struct CacheHeader {
 };
 constexpr uint32_t kCacheVersion = 1;
 
-uint64_t fnv1a(const char* data, size_t n) {
-  uint64_t h = 14695981039346656037ull;
-  for (size_t i = 0; i < n; ++i) {
-    h ^= static_cast<unsigned char>(data[i]);
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
 bool linked(GLuint program) {
   GLint ok = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
@@ -121,7 +112,7 @@ GLuint load_cached(const fs::path& file, const std::string& key, ProgramStats& s
   const char* data = bytes.data() + sizeof header;
   const size_t length = bytes.size() - sizeof header;
   if (std::memcmp(header.magic, "PRISMGLB", 8) != 0 || header.version != kCacheVersion || header.length != length ||
-      std::memcmp(header.key, key.data(), sizeof header.key) != 0 || header.checksum != fnv1a(data, length)) {
+      std::memcmp(header.key, key.data(), sizeof header.key) != 0 || header.checksum != gpu::fnv1a64(data, length)) {
     stats.cache = "corrupt";
     return 0;
   }
@@ -151,7 +142,7 @@ void store_cached(GLuint program, const fs::path& file, const std::string& key) 
   header.version = kCacheVersion;
   header.format = format;
   header.length = binary.size();
-  header.checksum = fnv1a(binary.data(), binary.size());
+  header.checksum = gpu::fnv1a64(binary.data(), binary.size());
   std::memcpy(header.key, key.data(), sizeof header.key);
   std::string content(reinterpret_cast<const char*>(&header), sizeof header);
   content.append(binary.data(), binary.size());
