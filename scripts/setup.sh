@@ -11,6 +11,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
   xvfb xauth x11-apps glslang-tools spirv-tools
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-dev
 )
 missing=()
 for p in "${packages[@]}"; do

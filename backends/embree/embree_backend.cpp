@@ -55,14 +55,7 @@ class EmbreeBackend final : public Backend {
 };
 
 void probe(PrismBackendProbe* out) {
-  try {
-    Device device;
-    out->usable = 1;
-    std::snprintf(out->reason, sizeof out->reason, "Embree %s", device.describe().c_str());
-  } catch (const std::exception& e) {
-    out->usable = 0;
-    std::snprintf(out->reason, sizeof out->reason, "%s", e.what());
-  }
+  probe_by_starting(out, [] { return "Embree " + Device().describe(); });
 }
 
 Backend* create() { return new EmbreeBackend(); }

@@ -3,13 +3,11 @@
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <vector>
 
 #include "kernel_source.hpp"
 #include "prism/errors.hpp"
-#include "prism/image_io.hpp"
+#include "program_cache.hpp"
 
 namespace prism::gl {
 
@@ -51,18 +49,8 @@ std::string shader_log(GLuint shader) {
   return log.c_str();
 }
 
-// Keeps the generated source of a failed build where the user can read it.
 std::string save_failed_source(const std::string& source, const std::string& key) {
-  fs::path dir = program_cache_dir();
-  if (dir.empty()) dir = fs::temp_directory_path();
-  fs::path file = dir / ("failed-" + key + ".comp");
-  try {
-    fs::create_directories(dir);
-    write_text_file_atomically(file, source);
-    return file.string();
-  } catch (const std::exception&) {
-    return "(not saved)";
-  }
+  return gpu::save_failed_source("opengl", source, key);
 }
 
 GLuint compile_and_link(const std::string& source, const std::string& key, ProgramStats& stats) {
@@ -97,20 +85,19 @@ GLuint compile_and_link(const std::string& source, const std::string& key, Progr
 
 // Loads a cached binary; 0 with stats.cache set to why when it cannot.
 GLuint load_cached(const fs::path& file, const std::string& key, ProgramStats& stats) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) {
+  const std::optional<std::string> bytes = gpu::read_cache_file(file);
+  if (!bytes) {
     stats.cache = "miss";
     return 0;
   }
-  std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CacheHeader header{};
-  if (bytes.size() < sizeof header) {
+  if (bytes->size() < sizeof header) {
     stats.cache = "corrupt";
     return 0;
   }
-  std::memcpy(&header, bytes.data(), sizeof header);
-  const char* data = bytes.data() + sizeof header;
-  const size_t length = bytes.size() - sizeof header;
+  std::memcpy(&header, bytes->data(), sizeof header);
+  const char* data = bytes->data() + sizeof header;
+  const size_t length = bytes->size() - sizeof header;
   if (std::memcmp(header.magic, "PRISMGLB", 8) != 0 || header.version != kCacheVersion || header.length != length ||
       std::memcmp(header.key, key.data(), sizeof header.key) != 0 || header.checksum != gpu::fnv1a64(data, length)) {
     stats.cache = "corrupt";
@@ -146,29 +133,17 @@ void store_cached(GLuint program, const fs::path& file, const std::string& key) 
   std::memcpy(header.key, key.data(), sizeof header.key);
   std::string content(reinterpret_cast<const char*>(&header), sizeof header);
   content.append(binary.data(), binary.size());
-  try {
-    fs::create_directories(file.parent_path());
-    write_text_file_atomically(file, content);
-  } catch (const std::exception&) {
-    // A cache that cannot be written only costs the next run a compile.
-  }
+  gpu::write_cache_file(file, content);
 }
 
 }  // namespace
-
-fs::path program_cache_dir() {
-  if (const char* dir = std::getenv("PRISM_CACHE_DIR"); dir && *dir) return fs::path(dir) / "opengl";
-  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "prism" / "opengl";
-  if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "prism" / "opengl";
-  return {};
-}
 
 GLuint build_program(const std::string& source, const std::string& driver_identity, ProgramStats& stats) {
   auto start = std::chrono::steady_clock::now();
   const std::string key = gpu::hash_hex(source + '\n' + driver_identity);
   GLint formats = 0;
   glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
-  const fs::path dir = program_cache_dir();
+  const fs::path dir = gpu::program_cache_dir("opengl");
   GLuint program = 0;
   if (formats <= 0) {
     stats.cache = "unsupported";

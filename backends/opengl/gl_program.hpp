@@ -22,10 +22,6 @@ struct ProgramStats {
   double ms = 0.0;
 };
 
-// The cache folder: $PRISM_CACHE_DIR, else $XDG_CACHE_HOME/prism, else
-// ~/.cache/prism; then "opengl". Empty when none can be named.
-std::filesystem::path program_cache_dir();
-
 // Returns a linked compute program for `source`. Throws RuntimeError with the
 // driver's log (and where the generated source was saved) when it fails.
 GLuint build_program(const std::string& source, const std::string& driver_identity, ProgramStats& stats);

@@ -12,6 +12,7 @@
 #include "egl_context.hpp"
 #include "gl_buffers.hpp"
 #include "gl_program.hpp"
+#include "gpu_dispatch.hpp"
 #include "gpu_scene.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
@@ -24,29 +25,14 @@ using gpu::GpuFrame;
 using gpu::GpuPixel;
 using gpu::GpuTraceRay;
 
-// Samples per tile: about 0.25 M, a few milliseconds on a GPU, well under a
-// second on llvmpipe, and few enough that 32-bit ray counters cannot overflow.
-constexpr long kSamplesPerTile = 1 << 18;
-constexpr int kTraceLocalSize = 64;
-constexpr size_t kTraceRaysPerDispatch = 1 << 16;
+using gpu::kTraceLocalSize;
+using gpu::kTraceRaysPerDispatch;
+using gpu::ms_since;
 
 // A GL 4.5 glue for the shared kernel: the tile origin is a plain uniform.
 constexpr const char* kApiGlue =
     "layout(location = 0) uniform ivec4 prism_tile;\n"
     "#define PRISM_TILE_ORIGIN prism_tile\n";
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-// Tile width and height for an image and spp (multiples of the 8x8 work group).
-std::pair<int, int> tile_size(const ImageSettings& s) {
-  long pixels = std::max<long>(64, kSamplesPerTile / s.spp);
-  int w = std::min(s.width, 512);
-  w = (w + 7) / 8 * 8;
-  int h = int(std::max<long>(8, pixels / w / 8 * 8));
-  return {w, std::min(h, (s.height + 7) / 8 * 8)};
-}
 
 void check_gl(const char* what) {
   GLenum error = glGetError();
@@ -123,32 +109,30 @@ class OpenGLBackend : public Backend {
     const ImageSettings& s = settings.image;
     GpuFrame frame = gpu::frame_for(state_->packed, settings.camera.value_or(scene_->camera), settings);
     gl::Buffer frame_buffer = frame_buffer_for(frame, gpu::sample_offsets(s.spp));
-    auto [tw, th] = tile_size(s);
+    auto [tw, th] = gpu::tile_size(s);
     gl::Buffer output(nullptr, gpu::kOutputHeaderBytes + size_t(tw) * th * sizeof(GpuPixel));
     state_->bind_scene();
     frame_buffer.bind(gpu::kBindFrame);
     output.bind(gpu::kBindOutput);
     glUseProgram(program);
 
-    Image image = blank_image(settings);
+    Image image = gpu::blank_image(settings);
     std::vector<GpuPixel> pixels(size_t(tw) * th);
     uint32_t counters[gpu::kRayCounterCount];
-    const int tiles_x = (s.width + tw - 1) / tw, tiles_y = (s.height + th - 1) / th;
-    for (int ty = 0; ty < tiles_y; ++ty) {
-      for (int tx = 0; tx < tiles_x; ++tx) {
-        const int x0 = tx * tw, y0 = ty * th, w = std::min(tw, s.width - x0), h = std::min(th, s.height - y0);
-        const uint32_t zero[gpu::kRayCounterCount] = {};
-        output.write(0, sizeof zero, zero);
-        glUniform4i(0, x0, y0, w, h);
-        glDispatchCompute(GLuint((w + 7) / 8), GLuint((h + 7) / 8), 1);
-        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-        output.read(0, sizeof counters, counters);
-        output.read(gpu::kOutputHeaderBytes, size_t(w) * h * sizeof(GpuPixel), pixels.data());
-        check_gl("rendering");
-        store_tile(image, settings, pixels, x0, y0, w, h);
-        add_counters(counters);
-        if (settings.progress) settings.progress(double(ty * tiles_x + tx + 1) / (tiles_x * tiles_y));
-      }
+    const std::vector<gpu::Tile> tiles = gpu::tiles_of(s);
+    for (size_t t = 0; t < tiles.size(); ++t) {
+      const gpu::Tile& tile = tiles[t];
+      const uint32_t zero[gpu::kRayCounterCount] = {};
+      output.write(0, sizeof zero, zero);
+      glUniform4i(0, tile.x0, tile.y0, tile.width, tile.height);
+      glDispatchCompute(GLuint((tile.width + 7) / 8), GLuint((tile.height + 7) / 8), 1);
+      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+      output.read(0, sizeof counters, counters);
+      output.read(gpu::kOutputHeaderBytes, size_t(tile.width) * tile.height * sizeof(GpuPixel), pixels.data());
+      check_gl("rendering");
+      gpu::store_tile(image, settings, pixels.data(), tile);
+      gpu::add_ray_counters(stats_, counters);
+      if (settings.progress) settings.progress(double(t + 1) / double(tiles.size()));
     }
     stats_.ms["render"] += ms_since(start);
     return image;
@@ -167,11 +151,7 @@ class OpenGLBackend : public Backend {
       const size_t n = std::min(kTraceRaysPerDispatch, rays.size() - first);
       frame.flags[1] = int32_t(n);
       gl::Buffer frame_buffer = frame_buffer_for(frame, {});
-      std::vector<GpuTraceRay> io(n);
-      for (size_t i = 0; i < n; ++i) {
-        const TraceQuery& q = rays[first + i];
-        io[i] = GpuTraceRay{{q.origin.x, q.origin.y, q.origin.z, q.tmin}, {q.dir.x, q.dir.y, q.dir.z, 0.0}, {}, {}, {}};
-      }
+      std::vector<GpuTraceRay> io = gpu::trace_records(rays.subspan(first, n));
       gl::Buffer io_buffer = buffer_of(io);
       frame_buffer.bind(gpu::kBindFrame);
       io_buffer.bind(gpu::kBindOutput);
@@ -180,12 +160,7 @@ class OpenGLBackend : public Backend {
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
       io_buffer.read(0, n * sizeof(GpuTraceRay), io.data());
       check_gl("tracing");
-      for (size_t i = 0; i < n; ++i) {
-        TraceResult& r = results[first + i];
-        r.t = io[i].t_normal[0];
-        r.id = io[i].id[0];
-        r.normal = {io[i].t_normal[1], io[i].t_normal[2], io[i].t_normal[3]};
-      }
+      gpu::read_trace_records(io, std::span(results).subspan(first, n));
     }
     stats_.rays += rays.size();
     stats_.rays_by_kind["trace"] += rays.size();
@@ -251,42 +226,8 @@ class OpenGLBackend : public Backend {
   }
 
   static gl::Buffer frame_buffer_for(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets) {
-    std::vector<unsigned char> bytes(sizeof frame + offsets.size() * sizeof(glm::dvec2));
-    std::memcpy(bytes.data(), &frame, sizeof frame);
-    if (!offsets.empty()) std::memcpy(bytes.data() + sizeof frame, offsets.data(), offsets.size() * sizeof(glm::dvec2));
+    const std::vector<unsigned char> bytes = gpu::frame_bytes(frame, offsets);
     return gl::Buffer(bytes.data(), bytes.size());
-  }
-
-  static Image blank_image(const RenderSettings& settings) {
-    Image image;
-    image.width = settings.image.width;
-    image.height = settings.image.height;
-    const size_t n = size_t(image.width) * image.height;
-    image.rgb.assign(n * 3, 0.0f);
-    if (settings.aov_id) image.id.assign(n, -1.0f);
-    if (settings.aov_path) image.path.assign(n, 0.0f);
-    return image;
-  }
-
-  static void store_tile(Image& image, const RenderSettings& settings, const std::vector<GpuPixel>& pixels, int x0,
-                         int y0, int w, int h) {
-    for (int j = 0; j < h; ++j) {
-      for (int i = 0; i < w; ++i) {
-        const GpuPixel& px = pixels[size_t(j) * w + i];
-        const size_t p = size_t(y0 + j) * image.width + (x0 + i);
-        std::copy_n(px.rgb, 3, &image.rgb[p * 3]);
-        if (settings.aov_id) image.id[p] = px.id;
-        if (settings.aov_path) image.path[p] = px.path;
-      }
-    }
-  }
-
-  void add_counters(const uint32_t counters[]) {
-    static const char* kinds[] = {"camera", "shadow", "reflect", "refract", "alpha", "shade1"};
-    for (int k = 0; k < 6; ++k) {
-      stats_.rays_by_kind[kinds[k]] += counters[k];
-      stats_.rays += counters[k];
-    }
   }
 
   std::unique_ptr<gl::EglContext> context_;
@@ -296,14 +237,7 @@ class OpenGLBackend : public Backend {
 };
 
 void probe(PrismBackendProbe* out) {
-  try {
-    gl::EglContext context;
-    out->usable = 1;
-    std::snprintf(out->reason, sizeof out->reason, "%s", context.description().c_str());
-  } catch (const std::exception& e) {
-    out->usable = 0;
-    std::snprintf(out->reason, sizeof out->reason, "%s", e.what());
-  }
+  probe_by_starting(out, [] { return gl::EglContext().description(); });
 }
 
 Backend* create() { return new OpenGLBackend(); }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 #include "prism/texture.hpp"
 
@@ -20,10 +21,9 @@ double offset_epsilon(const glm::dvec3& p) {
 
 }  // namespace
 
-const char* ray_kind_name(int kind) {
-  static const char* names[kRayKinds] = {"camera", "shadow", "reflect", "refract", "alpha", "shade1"};
-  return names[kind];
-}
+static_assert(std::size(kRayKindNames) == kRayKinds);
+
+const char* ray_kind_name(int kind) { return kRayKindNames[kind]; }
 
 struct Shader::Surface {
   glm::dvec3 position;

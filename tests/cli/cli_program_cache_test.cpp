@@ -2,9 +2,11 @@
 // `program_cache` in --stats must, on the second render of the same scene,
 // make no compile or link call of its own (every counter named *compile* or
 // *link* is 0) and report a cache hit with the same image; a cache file that
-// is corrupt is detected, rebuilt (compile calls again) and rewritten.
+// is corrupt, truncated or stale (another driver version wrote it) is
+// detected, rebuilt (compile calls again) and rewritten.
 // Mesa's own shader cache is pointed at a fresh folder (llvmpipe offers a
 // program-binary format only while its disk cache is on).
+#include <cstdint>
 #include <cstdlib>
 #include <nlohmann/json.hpp>
 
@@ -42,6 +44,35 @@ double compile_and_link_calls(const json& stats) {
   return calls;
 }
 
+uint64_t fnv1a64(const std::string& bytes, size_t from) {
+  uint64_t h = 14695981039346656037ull;
+  for (size_t i = from; i < bytes.size(); ++i) {
+    h ^= static_cast<unsigned char>(bytes[i]);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// Rewrites a cache file as if another driver version had written it;
+// false for a format this test does not know.
+bool make_stale(std::string& file) {
+  if (file.compare(0, 8, "PRISMGLB") == 0) {
+    // backends/opengl/gl_program.cpp: a 48-byte header with an FNV-1a
+    // checksum of the binary at offset 24. A binary the driver refuses.
+    for (size_t i = 48; i < file.size(); ++i) file[i] = char(i * 7);
+    const uint64_t h = fnv1a64(file, 48);
+    file.replace(24, 8, reinterpret_cast<const char*>(&h), 8);
+    return true;
+  }
+  if (file.compare(0, 8, "PRISMVKC") == 0) {
+    // backends/vulkan/vk_pipeline.cpp: the writing driver's pipeline-cache
+    // UUID at offset 48 (16 bytes), outside the checksummed payload.
+    for (size_t i = 48; i < 64; ++i) file[i] = char(~file[i]);
+    return true;
+  }
+  return false;
+}
+
 TEST_P(ProgramCache, SecondRenderCompilesNothingAndCorruptFilesAreRebuilt) {
   const std::string backend = GetParam();
   SceneText scene;
@@ -76,18 +107,10 @@ TEST_P(ProgramCache, SecondRenderCompilesNothingAndCorruptFilesAreRebuilt) {
   EXPECT_EQ(render(backend, "fourth.png")["info"]["program_cache"], "corrupt");
   EXPECT_EQ(render(backend, "fifth.png")["info"]["program_cache"], "hit");
 
-  // A well-formed file whose binary the driver refuses (as after a driver
-  // update) is "stale": the OpenGL cache's header (backends/opengl/gl_program.cpp)
-  // is 48 bytes with an FNV-1a checksum of the binary at offset 24.
+  // A well-formed file another driver version wrote (as after a driver
+  // update) is "stale", and is rebuilt.
   std::string file = read_file(cache_file);
-  if (file.compare(0, 8, "PRISMGLB") != 0) return;
-  for (size_t i = 48; i < file.size(); ++i) file[i] = char(i * 7);
-  uint64_t h = 14695981039346656037ull;
-  for (size_t i = 48; i < file.size(); ++i) {
-    h ^= static_cast<unsigned char>(file[i]);
-    h *= 1099511628211ull;
-  }
-  file.replace(24, 8, reinterpret_cast<const char*>(&h), 8);
+  ASSERT_TRUE(make_stale(file)) << "this test knows no stale form of " << backend << "'s cache files";
   write_file(cache_file, file);
   json stale = render(backend, "sixth.png");
   EXPECT_EQ(stale["info"]["program_cache"], "stale");

@@ -1,5 +1,10 @@
-// The main() of every Prism test executable: GoogleTest's, plus one thing for
-// the sanitizer build.
+// The main() of every Prism test executable: GoogleTest's, with Vulkan's
+// validation layer on, plus one thing for the sanitizer build.
+//
+// PRISM_VULKAN_VALIDATION=1 (unless the environment says otherwise) puts the
+// Khronos validation layer under every Vulkan render and trace the tests
+// make, in process or in a `prism` child: the backend then fails any
+// operation that drew a validation message.
 //
 // OpenImageIO pulls in log4cplus (through DCMTK), whose
 // library constructor starts a pool of four threads; at exit those threads
@@ -10,6 +15,8 @@
 // threads down, runs the same check on a quiet process; LeakSanitizer then
 // skips its own check at exit.
 #include <gtest/gtest.h>
+
+#include <cstdlib>
 
 #if defined(__SANITIZE_ADDRESS__)
 #define PRISM_HAS_LSAN 1
@@ -24,6 +31,7 @@
 #endif
 
 int main(int argc, char** argv) {
+  ::setenv("PRISM_VULKAN_VALIDATION", "1", 0);
   testing::InitGoogleTest(&argc, argv);
   const int status = RUN_ALL_TESTS();
 #ifdef PRISM_HAS_LSAN

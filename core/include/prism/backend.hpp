@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <cstdio>
+#include <exception>
 #include <functional>
 #include <map>
 #include <memory>
@@ -50,6 +52,10 @@ struct TraceResult {
   glm::dvec3 normal{0};  // outward unit normal, 0 on a miss
 };
 
+// The ray kinds of BackendStats::rays_by_kind, in the order every backend
+// counts them (the CPU shader's RayKind, the GPU kernels' counters).
+inline constexpr const char* kRayKindNames[] = {"camera", "shadow", "reflect", "refract", "alpha", "shade1"};
+
 // Counters and phase times a backend reports (`--stats`).
 struct BackendStats {
   std::vector<std::string> kernel_features;  // GPU backends: what was compiled in
@@ -95,3 +101,22 @@ typedef struct PrismBackendDesc {
 
 typedef const PrismBackendDesc* (*PrismBackendEntryFn)(void);
 }
+
+namespace prism {
+
+// A probe that tries to start what the backend needs: `describe()` returns a
+// short description of what it found (the device, the library version), or
+// throws with the reason the backend cannot run here.
+template <class Describe>
+void probe_by_starting(PrismBackendProbe* out, Describe describe) noexcept {
+  try {
+    const std::string found = describe();
+    out->usable = 1;
+    std::snprintf(out->reason, sizeof out->reason, "%s", found.c_str());
+  } catch (const std::exception& e) {
+    out->usable = 0;
+    std::snprintf(out->reason, sizeof out->reason, "%s", e.what());
+  }
+}
+
+}  // namespace prism

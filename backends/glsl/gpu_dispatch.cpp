@@ -1,0 +1,86 @@
+#include "gpu_dispatch.hpp"
+
+#include <algorithm>
+#include <cstring>
+#include <iterator>
+
+namespace prism::gpu {
+
+static_assert(std::size(kRayKindNames) <= kRayCounterCount);
+
+namespace {
+constexpr long kSamplesPerTile = 1 << 18;
+}
+
+std::pair<int, int> tile_size(const ImageSettings& image) {
+  const long pixels = std::max<long>(64, kSamplesPerTile / image.spp);
+  const int w = (std::min(image.width, 512) + 7) / 8 * 8;
+  const int h = int(std::max<long>(8, pixels / w / 8 * 8));
+  return {w, std::min(h, (image.height + 7) / 8 * 8)};
+}
+
+std::vector<Tile> tiles_of(const ImageSettings& image) {
+  const auto [tw, th] = tile_size(image);
+  std::vector<Tile> tiles;
+  for (int y0 = 0; y0 < image.height; y0 += th)
+    for (int x0 = 0; x0 < image.width; x0 += tw)
+      tiles.push_back({x0, y0, std::min(tw, image.width - x0), std::min(th, image.height - y0)});
+  return tiles;
+}
+
+std::vector<unsigned char> frame_bytes(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets) {
+  std::vector<unsigned char> bytes(sizeof frame + offsets.size() * sizeof(glm::dvec2));
+  std::memcpy(bytes.data(), &frame, sizeof frame);
+  if (!offsets.empty()) std::memcpy(bytes.data() + sizeof frame, offsets.data(), offsets.size() * sizeof(glm::dvec2));
+  return bytes;
+}
+
+Image blank_image(const RenderSettings& settings) {
+  Image image;
+  image.width = settings.image.width;
+  image.height = settings.image.height;
+  const size_t n = size_t(image.width) * image.height;
+  image.rgb.assign(n * 3, 0.0f);
+  if (settings.aov_id) image.id.assign(n, -1.0f);
+  if (settings.aov_path) image.path.assign(n, 0.0f);
+  return image;
+}
+
+void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pixels, const Tile& tile) {
+  for (int j = 0; j < tile.height; ++j) {
+    for (int i = 0; i < tile.width; ++i) {
+      const GpuPixel& px = pixels[size_t(j) * tile.width + i];
+      const size_t p = size_t(tile.y0 + j) * image.width + (tile.x0 + i);
+      std::copy_n(px.rgb, 3, &image.rgb[p * 3]);
+      if (settings.aov_id) image.id[p] = px.id;
+      if (settings.aov_path) image.path[p] = px.path;
+    }
+  }
+}
+
+void add_ray_counters(BackendStats& stats, const uint32_t counters[kRayCounterCount]) {
+  for (size_t k = 0; k < std::size(kRayKindNames); ++k) {
+    stats.rays_by_kind[kRayKindNames[k]] += counters[k];
+    stats.rays += counters[k];
+  }
+}
+
+std::vector<GpuTraceRay> trace_records(std::span<const TraceQuery> rays) {
+  std::vector<GpuTraceRay> records(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const TraceQuery& q = rays[i];
+    records[i] = GpuTraceRay{{q.origin.x, q.origin.y, q.origin.z, q.tmin}, {q.dir.x, q.dir.y, q.dir.z, 0.0}, {}, {}, {}};
+  }
+  return records;
+}
+
+void read_trace_records(std::span<const GpuTraceRay> records, std::span<TraceResult> results) {
+  for (size_t i = 0; i < records.size(); ++i) {
+    TraceResult& r = results[i];
+    r.t = records[i].t_normal[0];
+    r.id = records[i].id[0];
+    r.normal = {records[i].t_normal[1], records[i].t_normal[2], records[i].t_normal[3]};
+  }
+}
+
+}  // namespace prism::gpu

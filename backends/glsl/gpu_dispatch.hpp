@@ -1,0 +1,55 @@
+// The host side both GPU backends share around a dispatch: how a frame is
+// cut into tiles, the frame buffer's bytes, the trace kernel's ray records,
+// and turning what a tile wrote back into an Image and ray counts. Only the
+// API calls (GL or Vulkan) differ between the backends.
+#pragma once
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "gpu_layout.hpp"
+#include "prism/backend.hpp"
+
+namespace prism::gpu {
+
+// Trace kernel: 64 rays per work group, at most 65536 rays per dispatch.
+constexpr int kTraceLocalSize = 64;
+constexpr size_t kTraceRaysPerDispatch = 1 << 16;
+// Render kernels: 8x8 work groups.
+constexpr int kRenderLocalSize = 8;
+
+struct Tile {
+  int x0, y0, width, height;
+};
+
+// Tile width and height for an image and spp: multiples of the 8x8 work
+// group, about 0.25 M samples each (a few ms on a GPU, well under a second
+// on a CPU driver, and few enough that 32-bit ray counters cannot overflow).
+std::pair<int, int> tile_size(const ImageSettings& image);
+// Every tile of the image in row-major order, edge tiles clipped.
+std::vector<Tile> tiles_of(const ImageSettings& image);
+
+// The frame buffer's contents: the GpuFrame, then the sample offsets.
+std::vector<unsigned char> frame_bytes(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets);
+
+// A black image (ids -1) of the requested size and AOVs.
+Image blank_image(const RenderSettings& settings);
+// Copies a tile's pixels (row-major, `tile.width` wide) into the image.
+void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pixels, const Tile& tile);
+// Adds a tile's ray counters (the output buffer's header) to `stats`.
+void add_ray_counters(BackendStats& stats, const uint32_t counters[kRayCounterCount]);
+
+// The trace kernel's input records for `rays`.
+std::vector<GpuTraceRay> trace_records(std::span<const TraceQuery> rays);
+// Reads the kernel's answers back into `results`.
+void read_trace_records(std::span<const GpuTraceRay> records, std::span<TraceResult> results);
+
+inline double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace prism::gpu

@@ -1,0 +1,28 @@
+// The on-disk cache folder both GPU backends keep compiled kernels in, and
+// the file handling around it. What goes in a cache file (a GL program
+// binary, SPIR-V with a Vulkan pipeline cache) is each backend's own.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace prism::gpu {
+
+// $PRISM_CACHE_DIR/<api>, else $XDG_CACHE_HOME/prism/<api>, else
+// ~/.cache/prism/<api>. Empty when none can be named.
+std::filesystem::path program_cache_dir(const std::string& api);
+
+// The file's bytes, or nothing when it cannot be read (a cache miss).
+std::optional<std::string> read_cache_file(const std::filesystem::path& file);
+
+// Writes the file atomically; a cache that cannot be written only costs the
+// next run a compile, so failures are ignored.
+void write_cache_file(const std::filesystem::path& file, const std::string& bytes);
+
+// Keeps the generated source of a kernel that failed to build where the user
+// can read it (the cache folder, else the temporary folder) and returns the
+// file name, or "(not saved)".
+std::string save_failed_source(const std::string& api, const std::string& source, const std::string& key);
+
+}  // namespace prism::gpu

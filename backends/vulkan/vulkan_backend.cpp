@@ -1,0 +1,349 @@
+// The Vulkan backend: the scene-specialised GLSL kernel (backends/glsl),
+// compiled to SPIR-V at run time with glslang, run as a compute pipeline on
+// the chosen Vulkan 1.2 device. Scene data and the BVH sit in device-local
+// storage buffers; the image is rendered tile by tile, each tile's pixels
+// and ray counters copied to a staging buffer and read back before the next.
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <optional>
+
+#include "gpu_dispatch.hpp"
+#include "gpu_scene.hpp"
+#include "kernel_source.hpp"
+#include "prism/backend.hpp"
+#include "prism/errors.hpp"
+#include "vk_buffer.hpp"
+#include "vk_context.hpp"
+#include "vk_pipeline.hpp"
+
+namespace prism {
+namespace {
+
+using gpu::GpuFrame;
+using gpu::GpuPixel;
+using gpu::GpuTraceRay;
+using gpu::ms_since;
+
+// The Vulkan glue for the shared kernel: the tile origin is a push constant.
+constexpr const char* kApiGlue =
+    "layout(push_constant) uniform PrismPush { ivec4 tile; } prism_push;\n"
+    "#define PRISM_TILE_ORIGIN prism_push.tile\n";
+
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+
+// A kernel's pipeline and the descriptor set that binds the buffers to it.
+struct Kernel {
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkDescriptorSet descriptors = VK_NULL_HANDLE;
+};
+
+// Everything a prepared scene holds on the device.
+struct DeviceScene {
+  gpu::PackedScene packed;
+  vk::Buffer records, objects, nodes, materials, lights, texels;
+  std::optional<Kernel> render, trace;
+};
+
+template <class T>
+vk::Buffer upload(const vk::Context& context, vk::Commands& commands, const std::vector<T>& v, const char* what) {
+  return vk::upload_storage(context, commands, v.data(), v.size() * sizeof(T), std::string("upload of the ") + what);
+}
+
+class VulkanBackend : public Backend {
+ public:
+  VulkanBackend()
+      : context_(std::make_unique<vk::Context>()),
+        commands_(std::make_unique<vk::Commands>(*context_)),
+        layout_(std::make_unique<vk::PipelineLayout>(*context_)) {
+    stats_.info["device"] = context_->description();
+    stats_.info["precision"] = "double geometry, float32 shading";
+    stats_.info["validation"] = context_->validation() ? "on" : "off";
+    create_descriptor_pool();
+  }
+
+  ~VulkanBackend() override {
+    release_scene();
+    if (!context_->abandoned()) context_->api().vkDestroyDescriptorPool(context_->device(), pool_, nullptr);
+  }
+
+  void prepare(const Scene& scene) override {
+    auto start = std::chrono::steady_clock::now();
+    scene_model_ = &scene;
+    release_scene();
+    reset_descriptor_pool();
+    auto s = std::make_unique<DeviceScene>();
+    s->packed = gpu::pack_scene(scene);
+    const gpu::PackedScene& p = s->packed;
+    s->records = upload(*context_, *commands_, p.records, "object records");
+    s->objects = upload(*context_, *commands_, p.objects, "objects");
+    s->nodes = upload(*context_, *commands_, p.nodes, "BVH");
+    s->materials = upload(*context_, *commands_, p.materials, "materials");
+    s->lights = upload(*context_, *commands_, p.lights, "lights");
+    s->texels = upload(*context_, *commands_, p.texels, "texels");
+    scene_ = std::move(s);
+    stats_.ms["build"] = ms_since(start);
+    check_validation("scene upload");
+  }
+
+  Image render(const RenderSettings& settings) override {
+    const Kernel& kernel = kernel_for(false);
+    auto start = std::chrono::steady_clock::now();
+    const ImageSettings& s = settings.image;
+    const GpuFrame frame = gpu::frame_for(scene_->packed, settings.camera.value_or(scene_model_->camera), settings);
+    const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(frame, gpu::sample_offsets(s.spp));
+    vk::Buffer frame_buffer = vk::upload_storage(*context_, *commands_, frame_bytes.data(), frame_bytes.size(),
+                                                 "upload of the frame constants");
+    auto [tw, th] = gpu::tile_size(s);
+    const VkDeviceSize output_size = gpu::kOutputHeaderBytes + VkDeviceSize(tw) * th * sizeof(GpuPixel);
+    vk::Buffer output(*context_, output_size, kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                      vk::Memory::Device, "allocation of the tile output");
+    vk::Buffer readback(*context_, output_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::Memory::Staging,
+                        "allocation of the readback buffer");
+    bind(kernel, frame_buffer, output);
+
+    Image image = gpu::blank_image(settings);
+    const auto* header = static_cast<const uint32_t*>(readback.mapped());
+    const auto* pixels = reinterpret_cast<const GpuPixel*>(static_cast<const char*>(readback.mapped()) + gpu::kOutputHeaderBytes);
+    const std::vector<gpu::Tile> tiles = gpu::tiles_of(s);
+    for (size_t t = 0; t < tiles.size(); ++t) {
+      const gpu::Tile& tile = tiles[t];
+      const VkDeviceSize used = gpu::kOutputHeaderBytes + VkDeviceSize(tile.width) * tile.height * sizeof(GpuPixel);
+      commands_->run("rendering", [&](VkCommandBuffer cb) {
+        record_tile(cb, kernel, output, readback, tile, used);
+      });
+      gpu::store_tile(image, settings, pixels, tile);
+      gpu::add_ray_counters(stats_, header);
+      if (settings.progress) settings.progress(double(t + 1) / double(tiles.size()));
+    }
+    stats_.ms["render"] += ms_since(start);
+    check_validation("rendering");
+    return image;
+  }
+
+  std::vector<TraceResult> trace(std::span<const TraceQuery> rays) override {
+    const Kernel& kernel = kernel_for(true);
+    auto start = std::chrono::steady_clock::now();
+    GpuFrame frame = gpu::frame_for(scene_->packed, scene_model_->camera, RenderSettings{});
+    std::vector<TraceResult> results(rays.size());
+    for (size_t first = 0; first < rays.size(); first += gpu::kTraceRaysPerDispatch) {
+      const size_t n = std::min(gpu::kTraceRaysPerDispatch, rays.size() - first);
+      frame.flags[1] = int32_t(n);
+      const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(frame, {});
+      vk::Buffer frame_buffer = vk::upload_storage(*context_, *commands_, frame_bytes.data(), frame_bytes.size(),
+                                                   "upload of the frame constants");
+      const std::vector<GpuTraceRay> io = gpu::trace_records(rays.subspan(first, n));
+      const VkDeviceSize bytes = n * sizeof(GpuTraceRay);
+      vk::Buffer staging(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::Memory::Staging, "allocation of the ray staging buffer");
+      std::memcpy(staging.mapped(), io.data(), bytes);
+      vk::Buffer records(*context_, bytes, kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                         vk::Memory::Device, "allocation of the ray buffer");
+      bind(kernel, frame_buffer, records);
+      commands_->run("tracing", [&](VkCommandBuffer cb) { record_trace(cb, kernel, staging, records, n); });
+      gpu::read_trace_records({static_cast<const GpuTraceRay*>(staging.mapped()), n}, std::span(results).subspan(first, n));
+    }
+    stats_.rays += rays.size();
+    stats_.rays_by_kind["trace"] += rays.size();
+    stats_.ms["render"] += ms_since(start);
+    check_validation("tracing");
+    return results;
+  }
+
+  BackendStats stats() const override {
+    BackendStats s = stats_;
+    if (context_->validation()) s.counters["vulkan_validation_messages"] = double(context_->validation_message_count());
+    return s;
+  }
+
+ private:
+  const vk::Api& api() const { return context_->api(); }
+
+  void release_scene() {
+    if (scene_ && !context_->abandoned())
+      for (const std::optional<Kernel>& kernel : {scene_->render, scene_->trace})
+        if (kernel) api().vkDestroyPipeline(context_->device(), kernel->pipeline, nullptr);
+    scene_.reset();
+  }
+
+  // One descriptor set per kernel (render and trace), reallocated per scene.
+  void create_descriptor_pool() {
+    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * gpu::kBindingCount};
+    auto info = vk::make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    info.maxSets = 2;
+    info.poolSizeCount = 1;
+    info.pPoolSizes = &size;
+    vk::check(api().vkCreateDescriptorPool(context_->device(), &info, nullptr, &pool_), "descriptor pool creation");
+  }
+
+  void reset_descriptor_pool() {
+    api().vkDestroyDescriptorPool(context_->device(), pool_, nullptr);
+    pool_ = VK_NULL_HANDLE;
+    create_descriptor_pool();
+  }
+
+  // The render or trace kernel, generated, compiled and warmed up on first use.
+  const Kernel& kernel_for(bool trace) {
+    if (!scene_) throw RuntimeError("vulkan backend: render or trace before prepare");
+    std::optional<Kernel>& slot = trace ? scene_->trace : scene_->render;
+    if (slot) return *slot;
+    gpu::KernelOptions options;
+    options.trace = trace;
+    options.all_features = gpu::all_features_forced();
+    options.api_glue = kApiGlue;
+    if (trace) {
+      options.local_size_x = gpu::kTraceLocalSize;
+      options.local_size_y = 1;
+    }
+    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, options);
+    vk::PipelineStats build;
+    Kernel kernel;
+    kernel.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
+    kernel.descriptors = allocate_descriptors();
+    slot = kernel;
+    auto start = std::chrono::steady_clock::now();
+    warm_up(*slot);
+    stats_.kernel_features = source.features;
+    stats_.ms["compile"] += build.ms + ms_since(start);
+    stats_.counters["glslang_compile_calls"] += build.glslang_compile_calls;
+    // Where compile time goes: glslang, the driver's pipeline creation, and
+    // the first dispatch (where a JIT driver such as lavapipe generates code).
+    stats_.counters["glslang_ms"] += build.glslang_ms;
+    stats_.counters["pipeline_create_ms"] += build.driver_ms;
+    stats_.counters["first_dispatch_ms"] += ms_since(start);
+    stats_.info["program_cache"] = build.cache;
+    if (!build.cache_file.empty()) stats_.info["program_cache_file"] = build.cache_file.string();
+    check_validation("kernel build");
+    return *slot;
+  }
+
+  VkDescriptorSet allocate_descriptors() {
+    VkDescriptorSetLayout sets = layout_->sets();
+    auto info = vk::make<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    info.descriptorPool = pool_;
+    info.descriptorSetCount = 1;
+    info.pSetLayouts = &sets;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    vk::check(api().vkAllocateDescriptorSets(context_->device(), &info, &set), "descriptor set allocation");
+    return set;
+  }
+
+  // Points the kernel's eight bindings at the scene, the frame and the output.
+  void bind(const Kernel& kernel, const vk::Buffer& frame, const vk::Buffer& output) {
+    const vk::Buffer* buffers[gpu::kBindingCount] = {};
+    buffers[gpu::kBindRecords] = &scene_->records;
+    buffers[gpu::kBindObjects] = &scene_->objects;
+    buffers[gpu::kBindNodes] = &scene_->nodes;
+    buffers[gpu::kBindMaterials] = &scene_->materials;
+    buffers[gpu::kBindLights] = &scene_->lights;
+    buffers[gpu::kBindTexels] = &scene_->texels;
+    buffers[gpu::kBindFrame] = &frame;
+    buffers[gpu::kBindOutput] = &output;
+    VkDescriptorBufferInfo infos[gpu::kBindingCount];
+    VkWriteDescriptorSet writes[gpu::kBindingCount];
+    for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
+      infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
+      writes[b] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      writes[b].dstSet = kernel.descriptors;
+      writes[b].dstBinding = b;
+      writes[b].descriptorCount = 1;
+      writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+      writes[b].pBufferInfo = &infos[b];
+    }
+    api().vkUpdateDescriptorSets(context_->device(), gpu::kBindingCount, writes, 0, nullptr);
+  }
+
+  void dispatch(VkCommandBuffer cb, const Kernel& kernel, const int32_t tile[4], uint32_t groups_x, uint32_t groups_y) {
+    api().vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, kernel.pipeline);
+    api().vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout_->handle(), 0, 1, &kernel.descriptors, 0,
+                                  nullptr);
+    api().vkCmdPushConstants(cb, layout_->handle(), VK_SHADER_STAGE_COMPUTE_BIT, 0, 4 * sizeof(int32_t), tile);
+    api().vkCmdDispatch(cb, groups_x, groups_y, 1);
+  }
+
+  // Clear the counters, render the tile, copy what it wrote to the readback buffer.
+  void record_tile(VkCommandBuffer cb, const Kernel& kernel, const vk::Buffer& output, const vk::Buffer& readback,
+                   const gpu::Tile& tile, VkDeviceSize used) {
+    const vk::Api& vk = api();
+    vk.vkCmdFillBuffer(cb, output.handle(), 0, gpu::kOutputHeaderBytes, 0);
+    vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    const int32_t origin[4] = {tile.x0, tile.y0, tile.width, tile.height};
+    dispatch(cb, kernel, origin, uint32_t(tile.width + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize,
+             uint32_t(tile.height + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize);
+    copy_back(cb, output, readback, used);
+  }
+
+  void record_trace(VkCommandBuffer cb, const Kernel& kernel, const vk::Buffer& staging, const vk::Buffer& records,
+                    size_t n) {
+    const vk::Api& vk = api();
+    const VkBufferCopy region{0, 0, n * sizeof(GpuTraceRay)};
+    vk.vkCmdCopyBuffer(cb, staging.handle(), records.handle(), 1, &region);
+    vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    const int32_t origin[4] = {0, 0, 0, 0};
+    dispatch(cb, kernel, origin, uint32_t((n + gpu::kTraceLocalSize - 1) / gpu::kTraceLocalSize), 1);
+    copy_back(cb, records, staging, region.size);
+  }
+
+  // The compute results to host-visible memory, visible to the host once the fence signals.
+  void copy_back(VkCommandBuffer cb, const vk::Buffer& from, const vk::Buffer& to, VkDeviceSize size) {
+    const vk::Api& vk = api();
+    vk::barrier(vk, cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_ACCESS_TRANSFER_READ_BIT);
+    const VkBufferCopy region{0, 0, size};
+    vk.vkCmdCopyBuffer(cb, from.handle(), to.handle(), 1, &region);
+    vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                VK_ACCESS_HOST_READ_BIT);
+  }
+
+  // Drivers may generate machine code at the first dispatch (lavapipe JITs
+  // then): one empty dispatch (a zero-sized tile, every invocation returns
+  // at once) puts that cost in `compile`, where it belongs, not in `render`.
+  void warm_up(const Kernel& kernel) {
+    const GpuFrame empty{};
+    vk::Buffer frame = vk::upload_storage(*context_, *commands_, &empty, sizeof empty, "kernel warm-up");
+    vk::Buffer output(*context_, gpu::kOutputHeaderBytes + sizeof(GpuTraceRay), kStorage, vk::Memory::Device,
+                      "kernel warm-up");
+    bind(kernel, frame, output);
+    commands_->run("kernel warm-up", [&](VkCommandBuffer cb) {
+      const int32_t origin[4] = {0, 0, 0, 0};
+      dispatch(cb, kernel, origin, 1, 1);
+    });
+  }
+
+  // With validation on, any message fails the operation: the suite promises
+  // zero validation messages in every render and trace.
+  void check_validation(const char* what) const {
+    if (!context_->validation()) return;
+    const std::vector<std::string> messages = context_->validation_messages();
+    if (messages.size() == reported_) return;
+    std::string text = "Vulkan validation reported " + std::to_string(messages.size() - reported_) + " message(s) during " + what + ":";
+    for (size_t i = reported_; i < messages.size(); ++i) text += "\n  " + messages[i];
+    reported_ = messages.size();
+    throw RuntimeError(text);
+  }
+
+  std::unique_ptr<vk::Context> context_;
+  std::unique_ptr<vk::Commands> commands_;
+  std::unique_ptr<vk::PipelineLayout> layout_;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  std::unique_ptr<DeviceScene> scene_;
+  const Scene* scene_model_ = nullptr;
+  mutable size_t reported_ = 0;
+  BackendStats stats_;
+};
+
+void probe(PrismBackendProbe* out) {
+  probe_by_starting(out, [] { return vk::Context().description(); });
+}
+
+Backend* create() { return new VulkanBackend(); }
+
+const PrismBackendDesc kDesc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "vulkan", "1.0.0", 45, probe, create};
+
+}  // namespace
+}  // namespace prism
+
+extern "C" PRISM_EXPORT const PrismBackendDesc* prism_backend_entry(void) { return &prism::kDesc; }
