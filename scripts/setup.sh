@@ -10,7 +10,7 @@ packages=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
-  xvfb xauth x11-apps glslang-tools spirv-tools
+  xvfb xauth x11-apps glslang-tools spirv-tools chromium
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-dev
 )
 missing=()

@@ -13,5 +13,6 @@ Command add_list_command(CLI::App& app);
 Command add_render_command(CLI::App& app);
 Command add_trace_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
+Command add_conform_command(CLI::App& app);
 
 }  // namespace prism::cli

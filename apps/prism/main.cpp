@@ -1,4 +1,5 @@
-// prism: list the plugins, render a scene, trace a batch of rays, view a scene live.
+// prism: list the plugins, render a scene, trace a batch of rays, view a scene
+// live, check every backend against the reference (conform).
 // Exit status: 0 success, 2 bad input (scene, flag, CSV line, unknown
 // backend, plugin that fails to load), 1 failure at run time.
 #include <cstdio>
@@ -20,6 +21,7 @@ int main(int argc, char** argv) {
   add(prism::cli::add_render_command);
   add(prism::cli::add_trace_command);
   add(prism::cli::add_view_command);
+  add(prism::cli::add_conform_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

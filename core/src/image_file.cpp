@@ -53,4 +53,12 @@ void write_image_file(const std::filesystem::path& file, const ImageFile& image,
   if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
 }
 
+ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, float threshold) {
+  if (a.width != b.width || a.height != b.height || a.channels != b.channels)
+    throw InputError("cannot compare a " + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
+                     std::to_string(a.channels) + " image with a " + std::to_string(b.width) + "x" +
+                     std::to_string(b.height) + "x" + std::to_string(b.channels) + " one");
+  return image_module().compare(a, b, threshold);
+}
+
 }  // namespace prism

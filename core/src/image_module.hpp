@@ -12,6 +12,8 @@ struct ImageModule {
   // Return an empty string on success, else the reason.
   std::string (*read)(const std::filesystem::path& file, size_t max_pixels, ImageFile& out);
   std::string (*write)(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
+  // ImageBufAlgo::compare of two images of the same size and channel count.
+  ImageComparison (*compare)(const ImageFile& a, const ImageFile& b, float threshold);
 };
 
 }  // namespace prism

@@ -41,7 +41,7 @@ TEST_P(KernelFeatures, ForcingEveryFeatureChangesNoPixel) {
   if (!prism::test::require_backend_or_skip(backend)) return;
   prism::Registry registry;
   // Mirrors, shadows and a texture: several features absent, so forcing them changes the kernel.
-  prism::Scene scene = prism::load_scene(prism::test::source_dir() / "scenes" / "features" / "mirror.json", registry);
+  prism::Scene scene = prism::load_scene(prism::test::source_dir() / "scenes" / "conformance" / "mirror.json", registry);
   ::unsetenv("PRISM_KERNEL_FEATURES");
   Rendered specialised = render(registry, backend, scene);
   ::setenv("PRISM_KERNEL_FEATURES", "all", 1);

@@ -22,7 +22,7 @@ constexpr int kWidth = 160, kHeight = 90;
 // A 160-pixel window draws the status line at scale 1: (7 + 2 * 2) = 11 rows.
 constexpr int kBandRows = 11;
 
-fs::path scene() { return prism::test::source_dir() / "scenes" / "features" / "sphere.json"; }
+fs::path scene() { return prism::test::source_dir() / "scenes" / "conformance" / "sphere.json"; }
 
 struct Pixels {
   int width = 0, height = 0;

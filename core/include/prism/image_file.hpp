@@ -22,6 +22,18 @@ struct ImageFile {
   std::vector<float> pixels;  // width * height * channels; integer formats scaled to [0, 1]
 };
 
+// OpenImageIO's comparison of two images (ImageBufAlgo::compare), over every
+// channel: errors are absolute differences.
+struct ImageComparison {
+  double mean_error = 0, rms_error = 0, psnr = 0, max_error = 0;
+  int max_x = 0, max_y = 0, max_channel = 0;  // where the largest error is
+  long pixels_over = 0;  // pixels with a channel differing by more than the threshold
+};
+
+// Compares two images of the same size and channel count. Throws InputError
+// when they do not match.
+ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, float threshold);
+
 // Reads every pixel as float, alpha unassociated (never premultiplied).
 // Refuses images over `max_pixels`. Throws InputError.
 ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels = size_t(1) << 28);

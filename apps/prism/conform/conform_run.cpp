@@ -1,0 +1,370 @@
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <map>
+#include <set>
+
+#include "cli_common.hpp"
+#include "conform/conform.hpp"
+#include "prism/errors.hpp"
+#include "prism/image_file.hpp"
+#include "prism/scene_loader.hpp"
+
+namespace prism::conform {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string utc_now() {
+  const std::time_t now = std::time(nullptr);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+// Every 3x3 neighbour of (x, y) inside the image, the pixel itself included.
+template <class Visit>
+void for_each_neighbour(int width, int height, int x, int y, Visit visit) {
+  for (int j = std::max(0, y - 1); j <= std::min(height - 1, y + 1); ++j)
+    for (int i = std::max(0, x - 1); i <= std::min(width - 1, x + 1); ++i) visit(size_t(j) * width + i);
+}
+
+// The largest absolute channel difference of pixel p; +inf when the image
+// under test has a NaN or Inf there.
+float pixel_error(const Image& reference, const Image& image, size_t p) {
+  float worst = 0.0f;
+  for (int c = 0; c < 3; ++c) {
+    const float v = image.rgb[p * 3 + c];
+    if (!std::isfinite(v)) return INFINITY;
+    worst = std::max(worst, std::abs(v - reference.rgb[p * 3 + c]));
+  }
+  return worst;
+}
+
+ImageFile rgb_file(const Image& image) {
+  ImageFile file;
+  file.width = image.width;
+  file.height = image.height;
+  file.channels = 3;
+  file.pixels = image.rgb;
+  return file;
+}
+
+// The RGB channels of a stored reference image (R, G, B by name, else the first three).
+ImageFile rgb_of(const ImageFile& stored) {
+  ImageFile rgb;
+  rgb.width = stored.width;
+  rgb.height = stored.height;
+  rgb.channels = 3;
+  rgb.pixels.resize(size_t(stored.width) * stored.height * 3);
+  for (size_t p = 0; p < size_t(stored.width) * stored.height; ++p)
+    for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + c] = stored.pixels[p * stored.channels + c];
+  return rgb;
+}
+
+std::string object_label(const Scene& scene, int id) {
+  if (id == -1) return "background";
+  if (id <= -2) return "light " + std::to_string(-2 - id);
+  if (size_t(id) < scene.objects.size())
+    return std::string(scene.objects[size_t(id)].desc->type_name) + " (object " + std::to_string(id) + ")";
+  return "object " + std::to_string(id);
+}
+
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f %%", 100.0 * fraction);
+  return text;
+}
+
+double fraction(long part, long whole) { return whole > 0 ? double(part) / double(whole) : 0.0; }
+
+// Renders and times one frame; the backend's kernel compile time is kept apart.
+struct Timed {
+  Image image;
+  double render_ms = 0, compile_ms = 0;
+};
+Timed timed_render(Backend& backend, const RenderSettings& settings) {
+  auto compile_so_far = [&] {
+    const BackendStats s = backend.stats();
+    auto it = s.ms.find("compile");
+    return it == s.ms.end() ? 0.0 : it->second;
+  };
+  const double compile_before = compile_so_far();
+  const auto start = std::chrono::steady_clock::now();
+  Timed t;
+  t.image = backend.render(settings);
+  const double wall = ms_since(start);
+  t.compile_ms = compile_so_far() - compile_before;
+  t.render_ms = std::max(0.0, wall - t.compile_ms);
+  return t;
+}
+
+RenderSettings settings_for(const Scene& scene, bool with_aovs) {
+  RenderSettings settings;
+  settings.image = scene.image;
+  settings.aov_id = with_aovs;
+  settings.aov_path = with_aovs;
+  return settings;
+}
+
+// Error-vs-time: renders at spp 1, 2, 4, ... and compares with the stored image.
+std::vector<SweepPoint> sweep(Backend& backend, const Scene& scene, const ImageFile& truth, int max_spp) {
+  std::vector<SweepPoint> points;
+  for (int spp = 1; spp <= max_spp; spp *= 2) {
+    RenderSettings settings = settings_for(scene, false);
+    settings.image.spp = spp;
+    const Timed t = timed_render(backend, settings);
+    const ImageComparison c = compare_image_files(rgb_file(t.image), truth, 1.0f);
+    points.push_back({spp, t.render_ms, c.rms_error, c.mean_error});
+  }
+  return points;
+}
+
+struct Subject {
+  std::string name;
+  std::shared_ptr<const BackendPlugin> plugin;
+};
+
+class SceneRun {
+ public:
+  SceneRun(Registry& registry, const Options& options, const std::function<void(const std::string&)>& log)
+      : registry_(registry), options_(options), log_(log) {}
+
+  SceneResult run(const fs::path& file, const std::vector<Subject>& subjects) {
+    Scene scene = load_scene(file, registry_);
+    SceneResult result;
+    result.name = file.stem().string();
+    result.file = file;
+    result.image = scene.image;
+    result.reference_backend = "reference";
+    std::optional<ImageFile> truth = stored_reference(result);
+    cli::BackendChoice reference = cli::open_backend(registry_, "reference");
+    reference.backend->prepare(scene);
+    Timed r = timed_render(*reference.backend, settings_for(scene, true));
+    result.reference = std::move(r.image);
+    result.reference_ms = r.render_ms;
+    result.stable = stable_pixels(result.reference);
+    if (truth) result.reference_sweep = sweep(*reference.backend, scene, *truth, options_.sweep_max_spp);
+    for (const Subject& subject : subjects) {
+      result.backends.push_back(run_backend(scene, result, subject, truth));
+      log_(line(result, result.backends.back()));
+    }
+    return result;
+  }
+
+ private:
+  std::optional<ImageFile> stored_reference(SceneResult& result) const {
+    if (!options_.sweep) return std::nullopt;
+    const fs::path file = options_.references / (result.name + ".exr");
+    if (!fs::exists(file)) {
+      result.sweep_reference = "no stored reference " + file.string() + " (scripts/make_conformance_references.sh makes it)";
+      return std::nullopt;
+    }
+    ImageFile stored = read_image_file(file);
+    if (stored.width != result.image.width || stored.height != result.image.height || stored.channels < 3) {
+      result.sweep_reference = file.string() + " does not match the scene's image size; regenerate it";
+      return std::nullopt;
+    }
+    result.sweep_reference = file.string();
+    return rgb_of(stored);
+  }
+
+  bool required(const std::string& name) const {
+    return std::find(options_.required.begin(), options_.required.end(), name) != options_.required.end();
+  }
+
+  BackendResult run_backend(const Scene& scene, const SceneResult& scene_result, const Subject& subject,
+                            const std::optional<ImageFile>& truth) {
+    BackendResult b;
+    b.backend = subject.name;
+    const PrismBackendProbe probe = subject.plugin->probe();
+    if (!probe.usable) {
+      b.status = required(subject.name) ? "fail" : "skipped";
+      b.reason = std::string("cannot run here: ") + probe.reason +
+                 (required(subject.name) ? " (it is in PRISM_REQUIRE_BACKENDS)" : "");
+      return b;
+    }
+    try {
+      cli::BackendChoice choice = cli::open_backend(registry_, subject.name);
+      choice.backend->prepare(scene);
+      Timed t = timed_render(*choice.backend, settings_for(scene, false));
+      const BackendStats stats = choice.backend->stats();
+      b.device = stats.info.count("device") ? stats.info.at("device") : probe.reason;
+      b.precision = stats.info.count("precision") ? stats.info.at("precision") : "";
+      b.render_ms = t.render_ms;
+      b.compile_ms = t.compile_ms;
+      b.image = std::move(t.image);
+      judge(scene, scene_result, b);
+      if (truth) b.sweep = sweep(*choice.backend, scene, *truth, options_.sweep_max_spp);
+    } catch (const std::exception& e) {
+      b.status = "error";
+      b.reason = e.what();
+    }
+    return b;
+  }
+
+  void judge(const Scene& scene, const SceneResult& s, BackendResult& b) const {
+    if (b.image.width != s.reference.width || b.image.height != s.reference.height) {
+      b.status = "error";
+      b.reason = "returned a " + std::to_string(b.image.width) + "x" + std::to_string(b.image.height) + " image";
+      return;
+    }
+    b.metrics = measure(s.reference, s.stable, b.image, options_.caps.threshold);
+    b.attribution = attribute(scene, s.reference, b.image, options_.caps.threshold);
+    b.reason = verdict(b.metrics, options_.caps, b.precision == "double");
+    b.status = b.reason.empty() ? "pass" : "fail";
+  }
+
+  std::string line(const SceneResult& s, const BackendResult& b) const {
+    char text[512];
+    if (b.status == "skipped" || b.status == "error" || b.image.rgb.empty()) {
+      std::snprintf(text, sizeof text, "%-18s %-10s %s: %s", s.name.c_str(), b.backend.c_str(),
+                    b.status == "skipped" ? "SKIPPED" : b.status == "error" ? "ERROR" : "FAIL", b.reason.c_str());
+      return text;
+    }
+    const Metrics& m = b.metrics;
+    std::snprintf(text, sizeof text,
+                  "%-18s %-10s %-4s rms %.2e  max %.2e  over %s (stable %s, edge %s)  render %.1f ms  compile %.0f ms",
+                  s.name.c_str(), b.backend.c_str(), b.status == "pass" ? "PASS" : "FAIL", m.rms_error, m.max_error,
+                  percent(fraction(m.pixels_over, m.pixels)).c_str(),
+                  percent(fraction(m.stable_over, m.stable_pixels)).c_str(),
+                  percent(fraction(m.edge_over, m.edge_pixels)).c_str(), b.render_ms, b.compile_ms);
+    std::string out = text;
+    if (b.status != "pass") out += "\n    " + b.reason;
+    if (b.status != "pass" && !b.attribution.empty()) {
+      out += "\n    over-threshold pixels near:";
+      for (size_t i = 0; i < std::min<size_t>(3, b.attribution.size()); ++i)
+        out += " " + b.attribution[i].label + " " + percent(b.attribution[i].fraction) + (i + 1 < 3 ? "," : "");
+    }
+    return out;
+  }
+
+  Registry& registry_;
+  const Options& options_;
+  const std::function<void(const std::string&)>& log_;
+};
+
+std::vector<fs::path> scene_files(const std::vector<fs::path>& given) {
+  std::vector<fs::path> files;
+  for (const fs::path& path : given) {
+    if (!fs::is_directory(path)) {
+      files.push_back(path);
+      continue;
+    }
+    std::vector<fs::path> in_folder;
+    for (const auto& entry : fs::directory_iterator(path))
+      if (entry.path().extension() == ".json") in_folder.push_back(entry.path());
+    std::sort(in_folder.begin(), in_folder.end());
+    if (in_folder.empty()) throw InputError("no scene (*.json) in " + path.string());
+    files.insert(files.end(), in_folder.begin(), in_folder.end());
+  }
+  return files;
+}
+
+std::vector<Subject> subjects_for(Registry& registry, const Options& options) {
+  std::vector<std::string> names = options.backends;
+  if (names.empty())
+    for (const std::string& name : registry.backend_names_found())
+      if (name != "reference") names.push_back(name);
+  std::vector<Subject> subjects;
+  for (const std::string& name : names) subjects.push_back({name, registry.backend(name)});  // InputError when unknown
+  return subjects;
+}
+
+}  // namespace
+
+std::vector<uint8_t> stable_pixels(const Image& reference) {
+  const int w = reference.width, h = reference.height;
+  std::vector<uint8_t> stable(size_t(w) * h, 0);
+  if (reference.path.empty()) return stable;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const size_t p = size_t(y) * w + x;
+      bool same = true;
+      for_each_neighbour(w, h, x, y, [&](size_t q) { same = same && reference.path[q] == reference.path[p]; });
+      stable[p] = same ? 1 : 0;
+    }
+  }
+  return stable;
+}
+
+Metrics measure(const Image& reference, const std::vector<uint8_t>& stable, const Image& image, float threshold) {
+  Metrics m;
+  const ImageComparison c = compare_image_files(rgb_file(reference), rgb_file(image), threshold);
+  m.mean_error = c.mean_error;
+  m.rms_error = c.rms_error;
+  m.psnr = c.psnr;
+  m.max_error = c.max_error;
+  m.pixels = long(stable.size());
+  for (size_t p = 0; p < stable.size(); ++p) {
+    const float error = pixel_error(reference, image, p);
+    const bool over = error > threshold;
+    if (std::isinf(error)) ++m.nonfinite;
+    m.pixels_over += over;
+    (stable[p] ? m.stable_pixels : m.edge_pixels) += 1;
+    (stable[p] ? m.stable_over : m.edge_over) += over;
+  }
+  return m;
+}
+
+std::vector<Attribution> attribute(const Scene& scene, const Image& reference, const Image& image, float threshold) {
+  std::map<int, long> counts;
+  long over = 0;
+  const int w = reference.width, h = reference.height;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!(pixel_error(reference, image, size_t(y) * w + x) > threshold)) continue;
+      ++over;
+      std::set<int> near;
+      for_each_neighbour(w, h, x, y, [&](size_t q) { near.insert(reference.id.empty() ? -1 : int(reference.id[q])); });
+      for (int id : near) ++counts[id];
+    }
+  }
+  std::vector<Attribution> result;
+  for (const auto& [id, n] : counts) result.push_back({id, object_label(scene, id), n, fraction(n, over)});
+  std::stable_sort(result.begin(), result.end(), [](const Attribution& a, const Attribution& b) { return a.pixels > b.pixels; });
+  return result;
+}
+
+std::string verdict(const Metrics& m, const Caps& caps, bool double_precision) {
+  std::string why;
+  auto add = [&](const std::string& s) { why += (why.empty() ? "" : "; ") + s; };
+  if (m.nonfinite > 0) add(std::to_string(m.nonfinite) + " NaN or Inf pixel(s)");
+  const double stable_cap = double_precision ? caps.stable_over_double : caps.stable_over_gpu;
+  if (fraction(m.stable_over, m.stable_pixels) > stable_cap)
+    add(std::to_string(m.stable_over) + " stable pixels (" + percent(fraction(m.stable_over, m.stable_pixels)) +
+        ") over " + std::to_string(caps.threshold).substr(0, 5) + ", cap " + percent(stable_cap));
+  if (fraction(m.pixels_over, m.pixels) > caps.all_over)
+    add(std::to_string(m.pixels_over) + " pixels (" + percent(fraction(m.pixels_over, m.pixels)) + ") over " +
+        std::to_string(caps.threshold).substr(0, 5) + ", cap " + percent(caps.all_over));
+  return why;
+}
+
+bool RunResult::passed() const {
+  for (const SceneResult& s : scenes)
+    for (const BackendResult& b : s.backends)
+      if (b.status == "fail" || b.status == "error") return false;
+  return true;
+}
+
+RunResult run_conformance(Registry& registry, const Options& options,
+                          const std::function<void(const std::string&)>& log) {
+  const auto start = std::chrono::steady_clock::now();
+  RunResult run;
+  run.caps = options.caps;
+  run.started = utc_now();
+  const std::vector<fs::path> files = scene_files(options.scenes);
+  const std::vector<Subject> subjects = subjects_for(registry, options);
+  for (const fs::path& file : files) run.scenes.push_back(SceneRun(registry, options, log).run(file, subjects));
+  run.wall_ms = ms_since(start);
+  return run;
+}
+
+}  // namespace prism::conform
