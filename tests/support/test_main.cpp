@@ -6,14 +6,12 @@
 // make, in process or in a `prism` child: the backend then fails any
 // operation that drew a validation message.
 //
-// OpenImageIO pulls in log4cplus (through DCMTK), whose
-// library constructor starts a pool of four threads; at exit those threads
-// wind down while LeakSanitizer's end-of-process check suspends the process,
-// and LeakSanitizer's tracer now and then crashes on a half-exited thread
-// ("Tracer caught signal 11", seen in CI on tests that merely write a PNG).
-// Checking for leaks here, after the tests and before exit() starts tearing
-// threads down, runs the same check on a quiet process; LeakSanitizer then
-// skips its own check at exit.
+// Sanitizer build: the leak check runs here, after the tests and before
+// exit() tears down the threads that libraries loaded with dlopen started
+// (OpenImageIO's log4cplus pool, GL and Vulkan drivers), so LeakSanitizer
+// scans a quiet process; it then skips its own check at exit. (The tracer
+// crashes CI saw came from LeakSanitizer's dynamic-TLS tracking; see
+// scripts/test.sh for the option that ends them.)
 #include <gtest/gtest.h>
 
 #include <cstdlib>
