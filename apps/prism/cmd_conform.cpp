@@ -1,4 +1,4 @@
-// prism conform [SCENES...] [-b BACKENDS] [--report DIR] [--sweep]
+// prism conform [SCENES...] [-b BACKENDS] [--report DIR] [--sweep] [--stability DIR]
 // Every backend's image of every scene against the reference backend's at
 // the same settings; exit 1 when any backend fails, 0 otherwise.
 #include <cstdio>
@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 struct ConformArgs {
   std::vector<std::string> scenes;
   std::vector<std::string> backends;
-  std::string report, references = "tests/conformance/references";
+  std::string report, references = "tests/conformance/references", stability;
   bool sweep = false;
   int sweep_max_spp = 16;
 };
@@ -42,11 +42,14 @@ int run_conform(const ConformArgs& args) {
   options.sweep_max_spp = args.sweep_max_spp;
   options.references = args.references;
   if (!args.report.empty()) fs::create_directories(args.report);
+  std::optional<conform::StabilityResults> stability;
+  if (!args.stability.empty()) stability = conform::read_stability_results(args.stability);
   Registry registry;
-  const conform::RunResult run = conform::run_conformance(registry, options, [](const std::string& line) {
+  conform::RunResult run = conform::run_conformance(registry, options, [](const std::string& line) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
   });
+  run.stability = stability;
   if (!args.report.empty()) {
     conform::write_report(run, args.report);
     std::printf("report: %s\n", (fs::path(args.report) / "index.html").string().c_str());
@@ -70,6 +73,8 @@ Command add_conform_command(CLI::App& app) {
       ->check(CLI::Range(1, 4096));
   sub->add_option("--references", args->references,
                   "Folder of the stored high-spp <scene>.exr images (default tests/conformance/references)");
+  sub->add_option("--stability", args->stability,
+                  "Show the stability suite's results from this folder (prism_stability --out) in the report");
   return [args] { return run_conform(*args); };
 }
 

@@ -32,18 +32,9 @@ fs::path prism_binary() { return fs::path(PRISM_BINARY_DIR) / "bin" / "prism"; }
 fs::path default_plugin_folder() { return fs::path(PRISM_BINARY_DIR) / "lib" / "prism"; }
 fs::path bad_plugin_folder() { return fs::path(PRISM_CLI_BAD_PLUGIN_DIR); }
 
-std::string read_file(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
+std::string read_file(const fs::path& file) { return prism::test::read_file(file); }
 
-void write_file(const fs::path& file, const std::string& contents) {
-  std::ofstream out(file, std::ios::binary);
-  out << contents;
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-}
+void write_file(const fs::path& file, const std::string& contents) { prism::test::write_file(file, contents); }
 
 std::vector<std::string> list_folder(const fs::path& folder) {
   std::vector<std::string> names;

@@ -4,9 +4,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "conform/conform.hpp"
+#include "prism/errors.hpp"
+#include "prism/image_io.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene_loader.hpp"
 #include "test_support.hpp"
@@ -111,6 +115,28 @@ TEST(ConformAttribution, OverPixelsAreBlamedOnTheObjectsAroundThem) {
   EXPECT_EQ(blame[0].label, "background");
   EXPECT_EQ(blame[1].label, "torus (object 0)");
   EXPECT_EQ(blame[2].label, "torus (object 1)");
+}
+
+// The stability suite's table and chart reach the report as written.
+TEST(ConformStability, TheSuitesTableAndChartAreShownInTheReport) {
+  const std::filesystem::path dir = prism::test::fresh_temp_dir();
+  write_text_file_atomically(dir / "stability.csv", "family,backend,p99\n\"grazing, 1e-7\",embree,3e-16\n");
+  write_text_file_atomically(dir / "stability.svg", "<?xml version=\"1.0\"?>\n<svg id=\"stability-chart\"></svg>\n");
+  RunResult run;
+  run.stability = read_stability_results(dir);
+  ASSERT_EQ(run.stability->rows.size(), 2u);
+  EXPECT_EQ(run.stability->rows[1], (std::vector<std::string>{"grazing, 1e-7", "embree", "3e-16"}));
+  write_report(run, dir / "report");
+  std::ifstream in(dir / "report" / "index.html");
+  const std::string page((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(page.find("Numerical stability"), std::string::npos);
+  EXPECT_NE(page.find("<svg id=\"stability-chart\">"), std::string::npos);
+  EXPECT_EQ(page.find("<?xml"), std::string::npos);
+  EXPECT_NE(page.find("<td>grazing, 1e-7</td>"), std::string::npos);
+}
+
+TEST(ConformStability, AMissingFolderIsBadInput) {
+  EXPECT_THROW(read_stability_results(prism::test::fresh_temp_dir()), InputError);
 }
 
 }  // namespace

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 
 #include "prism/scene_loader.hpp"
 
@@ -129,6 +131,20 @@ std::vector<TraceResult> BackendTest::trace(const Scene& scene, std::span<const 
   std::unique_ptr<Backend> backend = plugin_->create();
   backend->prepare(scene);
   return backend->trace(rays);
+}
+
+std::string read_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+void write_file(const std::filesystem::path& file, const std::string& contents) {
+  std::ofstream out(file, std::ios::binary);
+  out << contents;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
 }  // namespace prism::test

@@ -50,6 +50,11 @@ bool require_backend_or_skip(const std::string& name);
 // A gtest-safe parameter name: the backend name with anything but [A-Za-z0-9] as '_'.
 std::string backend_param_name(const testing::TestParamInfo<std::string>& info);
 
+// A file's bytes ("" when it cannot be read), and writing them (throws
+// std::runtime_error when it cannot).
+std::string read_file(const std::filesystem::path& file);
+void write_file(const std::filesystem::path& file, const std::string& contents);
+
 // A new, empty folder for this test's files (unique per process and test).
 std::filesystem::path fresh_temp_dir();
 

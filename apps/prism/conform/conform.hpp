@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -82,8 +83,19 @@ struct SceneResult {
   std::string sweep_reference;              // the stored high-spp EXR, or why there is none
 };
 
+// The stability suite's results (tests/stability: `prism_stability --out
+// DIR` writes stability.csv and stability.svg), shown in the report.
+struct StabilityResults {
+  std::filesystem::path source;                // the folder they were read from
+  std::vector<std::vector<std::string>> rows;  // stability.csv, the header first
+  std::string chart_svg;                       // stability.svg: error against ns per ray
+};
+// Reads DIR/stability.csv and DIR/stability.svg; InputError when missing.
+StabilityResults read_stability_results(const std::filesystem::path& dir);
+
 struct RunResult {
   std::vector<SceneResult> scenes;
+  std::optional<StabilityResults> stability;
   Caps caps;
   double wall_ms = 0;
   std::string started;  // ISO 8601 UTC

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 #include <string_view>
 
@@ -810,6 +811,23 @@ std::string scene_section(const SceneResult& scene, size_t index, const Caps& ca
          error_time_chart(scene, palette) + "</section>\n";
 }
 
+// The stability suite's table and chart, as its runner wrote them.
+std::string stability_section(const StabilityResults& results) {
+  std::string table = "<table class=\"metrics\">\n";
+  for (size_t r = 0; r < results.rows.size(); ++r) {
+    const char* cell = r == 0 ? "th" : "td";
+    table += "<tr>";
+    for (const std::string& field : results.rows[r]) table += std::string("<") + cell + ">" + html(field) + "</" + cell + ">";
+    table += "</tr>\n";
+  }
+  table += "</table>\n";
+  const size_t svg = results.chart_svg.find("<svg");
+  return "<section id=\"stability\"><h2>Numerical stability</h2>\n<p class=\"meta\">" +
+         html("Every intersector against a quad-precision oracle, error beside time per ray (" +
+              results.source.string() + ")") +
+         "</p>\n" + (svg == std::string::npos ? "" : results.chart_svg.substr(svg)) + table + "</section>\n";
+}
+
 std::string report_html(const RunResult& run) {
   const std::vector<std::string> names = backend_names(run);
   const Palette palette(names);
@@ -820,6 +838,7 @@ std::string report_html(const RunResult& run) {
       std::string(kStyle) + "</style></head>\n<body>\n";
   page += page_header(run, names.size()) + summary_table(run, names);
   for (size_t i = 0; i < run.scenes.size(); ++i) page += scene_section(run.scenes[i], i, run.caps, palette);
+  if (run.stability) page += stability_section(*run.stability);
   return page + kScript + "</body></html>\n";
 }
 
@@ -869,6 +888,36 @@ void write_results_csv(const RunResult& run, const fs::path& file) {
   write_text_file_atomically(file, results);
   // Written even when empty, so a stale file from an earlier run never survives.
   write_text_file_atomically(file.parent_path() / (file.stem().string() + "_sweep.csv"), sweep);
+}
+
+namespace {
+
+// One CSV record per line; fields may be quoted, with "" for a quote.
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> fields(1);
+  bool quoted = false;
+  for (size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') fields.back() += line[++i];
+    else if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) fields.emplace_back();
+    else if (c != '\r') fields.back() += c;
+  }
+  return fields;
+}
+
+}  // namespace
+
+StabilityResults read_stability_results(const fs::path& dir) {
+  StabilityResults results;
+  results.source = dir;
+  for (const char* name : {"stability.csv", "stability.svg"})
+    if (!fs::exists(dir / name)) throw InputError("--stability: no " + (dir / name).string() + " (prism_stability --out writes it)");
+  std::istringstream csv(read_bytes(dir / "stability.csv"));
+  for (std::string line; std::getline(csv, line);)
+    if (!line.empty()) results.rows.push_back(csv_fields(line));
+  results.chart_svg = read_bytes(dir / "stability.svg");
+  return results;
 }
 
 void write_report(const RunResult& run, const fs::path& dir) {
