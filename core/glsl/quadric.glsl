@@ -10,7 +10,8 @@
 //
 // Method (shared/notes/numerics.md, Quadratics): origin moved to the foot of
 // the perpendicular from the local origin before b and c are formed (Wald,
-// Ray Tracing Gems II ch. 34), roots by the stable pair c/q, q/a with the
+// Ray Tracing Gems II ch. 34), and again to the vertex of f along the ray
+// when the roots are close together (4ac >= b^2 / 2), roots by the stable pair c/q, q/a with the
 // fma discriminant (prism_solve_quadratic), `a == 0` exactly is linear and
 // nothing else, non-finite roots rejected, clip test on the point formed in
 // the re-centred frame, one Newton step onto f = 0 in surface. Double
@@ -79,6 +80,18 @@ bool prism_quadric_intersect(uint rec, PrismRay ray, double tmin, double tmax, o
   double a = prism_quadric_quadratic_term(q, d);
   double b = dot(prism_quadric_gradient(q, of), d);
   double c = prism_quadric_value(q, of);
+  // Roots near the vertex of f along the ray (4ac >= b^2 / 2): b^2 and 4ac
+  // nearly cancel, so re-centre at the vertex, where b is ~0 and c is formed
+  // directly (quadric_math.hpp says why).
+  if (a != 0.0LF && 4.0LF * a * c >= 0.5LF * b * b) {
+    double tv = -b / (2.0LF * a);
+    if (prism_is_finite(tv)) {
+      of += tv * d;
+      tf += tv;
+      b = dot(prism_quadric_gradient(q, of), d);
+      c = prism_quadric_value(q, of);
+    }
+  }
   double s[2];
   int n = prism_solve_quadratic(a, b, c, s[0], s[1]);
   for (int i = 0; i < n; ++i) {

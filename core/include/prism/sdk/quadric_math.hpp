@@ -72,7 +72,8 @@ inline bool quadric_bounds(const QuadricShape& q, double lo[3], double hi[3]) {
 // point p. The origin is moved to the foot of the perpendicular from the
 // local origin first, so b and c are formed from numbers of the object's
 // size even for a camera 1e6 away; p is taken in that frame too, which keeps
-// its error ~eps * |object| rather than eps * |origin|.
+// its error ~eps * |object| rather than eps * |origin|. Where the roots are
+// close together it is moved again, to the vertex of f along the ray.
 inline bool intersect_quadric(const QuadricShape& q, const glm::dvec3& o, const glm::dvec3& d, double tmin,
                               double tmax, double& t, glm::dvec3& p) {
   double tf = foot_parameter(o, d);
@@ -80,6 +81,20 @@ inline bool intersect_quadric(const QuadricShape& q, const glm::dvec3& o, const 
   double a = quadric_quadratic_term(q, d);
   double b = glm::dot(quadric_gradient(q, of), d);
   double c = quadric_value(q, of);
+  // When both roots lie near the vertex of f along the ray (4ac >= b^2 / 2:
+  // they are within 0.71 of its distance from it, or there are none), b^2
+  // and 4ac nearly cancel and the discriminant drowns in their rounding: a
+  // spheroid x^2 + 1e12 y^2 + z^2 = 1 lost hits that way. Re-centred at the
+  // vertex, b is ~0 and c is f's extreme value, formed directly.
+  if (a != 0.0 && 4.0 * a * c >= 0.5 * b * b) {
+    const double tv = -b / (2.0 * a);
+    if (std::isfinite(tv)) {
+      of += tv * d;
+      tf += tv;
+      b = glm::dot(quadric_gradient(q, of), d);
+      c = quadric_value(q, of);
+    }
+  }
   double s[2];
   int n = solve_quadratic(a, b, c, s[0], s[1]);
   for (int i = 0; i < n; ++i) {
