@@ -39,16 +39,20 @@ BackendChoice open_backend(Registry& registry, const std::string& requested) {
   auto plugin = registry.backend(name);
   PrismBackendProbe probe = plugin->probe();
   if (!probe.usable) throw RuntimeError("backend '" + name + "' cannot run here: " + probe.reason);
+  return {name, start_backend(*plugin, name)};
+}
+
+std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::string& name) {
   std::unique_ptr<Backend> backend;
   try {
-    backend = plugin->create();
+    backend = plugin.create();
   } catch (const InputError&) {
     throw;
   } catch (const std::exception& e) {
     throw RuntimeError("backend '" + name + "' failed to start: " + e.what());
   }
   if (!backend) throw RuntimeError("backend '" + name + "' failed to start");
-  return {name, std::move(backend)};
+  return backend;
 }
 
 double PhaseTimer::lap() {

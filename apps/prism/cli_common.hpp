@@ -23,6 +23,9 @@ struct BackendChoice {
 // fastest usable one). Unknown or unloadable: InputError; cannot start: RuntimeError.
 BackendChoice open_backend(Registry& registry, const std::string& name);
 
+// Creates a backend already probed usable; RuntimeError when it fails to start.
+std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::string& name);
+
 // The scene's image settings with the command line's --width, --height,
 // --spp and --max-depth applied (any Args with those optional members),
 // checked against the format's ranges (InputError).

@@ -96,10 +96,5 @@ const ImageModule module = {read, write, compare};
 }  // namespace prism
 
 extern "C" __attribute__((visibility("default"))) const prism::ImageModule* prism_image_module(void) {
-  // Prism reads and writes one image at a time: OIIO's worker-thread pool
-  // buys nothing but more threads alive at exit (see tests/support/test_main.cpp
-  // for why threads winding down at exit trouble the sanitizer build).
-  static const bool single_threaded = OIIO::attribute("threads", 1);
-  (void)single_threaded;
   return &prism::module;
 }

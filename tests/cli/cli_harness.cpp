@@ -1,12 +1,8 @@
 #include "cli_harness.hpp"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -93,34 +89,18 @@ RunResult CliTest::run(const std::vector<std::string>& args, std::optional<std::
     result.command = "PRISM_PLUGIN_PATH=" + *plugin_path + " " + result.command;
   }
 
-  std::vector<char*> argv, envp;
-  for (auto& a : argv_text) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  for (auto& e : env_text) envp.push_back(e.data());
-  envp.push_back(nullptr);
-
   const int n = ++runs_;
-  const fs::path out_file = root_ / ("stdout." + std::to_string(n)), err_file = root_ / ("stderr." + std::to_string(n));
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = 0;
-  int rc = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) {
-    ADD_FAILURE() << "cannot start " << binary << ": " << std::strerror(rc);
+  const prism::test::CapturedRun run = prism::test::run_captured(
+      argv_text, env_text, root_ / ("stdout." + std::to_string(n)), root_ / ("stderr." + std::to_string(n)));
+  if (!run.started) {
+    ADD_FAILURE() << run.start_error;
     return result;
   }
-  int wstatus = 0;
-  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
-  }
-  result.exited = WIFEXITED(wstatus);
-  if (result.exited) result.status = WEXITSTATUS(wstatus);
-  if (WIFSIGNALED(wstatus)) result.signal = WTERMSIG(wstatus);
-  result.out = read_file(out_file);
-  result.err = read_file(err_file);
+  result.exited = run.exited;
+  result.status = run.status;
+  result.signal = run.signal;
+  result.out = run.out;
+  result.err = run.err;
   return result;
 }
 

@@ -514,6 +514,15 @@ void add_box(Builder& b) {
         });
 }
 
+// The torus at kCenterA, rotated by kTilted, and a point of its surface in
+// the local frame (u around the axis, v around the tube).
+nlohmann::json tilted_torus(double R, double r) {
+  return placed({{"type", "torus"}, {"major_radius", R}, {"minor_radius", r}}, kCenterA, kTilted);
+}
+V torus_point(double R, double r, double u, double v) {
+  return {(R + r * std::cos(v)) * std::cos(u), r * std::sin(v), (R + r * std::cos(v)) * std::sin(u)};
+}
+
 void add_torus(Builder& b) {
   const std::vector<double> ratios = {1e-3, 1e-2, 0.1, 0.5, 0.9, 0.99};
 
@@ -522,11 +531,10 @@ void add_torus(Builder& b) {
         {"r/R", ratios, 1e-3}, [](double ratio, int n, Rng& rng) {
           Case c;
           const double R = 1, r = ratio * R;
-          c.objects = nlohmann::json::array(
-              {placed({{"type", "torus"}, {"major_radius", R}, {"minor_radius", r}}, kCenterA, kTilted)});
+          c.objects = nlohmann::json::array({tilted_torus(R, r)});
           for (int i = 0; i < n; ++i) {
             const double u = rng.range(0, 2 * kPi), v = rng.range(0, 2 * kPi);
-            const V p{(R + r * std::cos(v)) * std::cos(u), r * std::sin(v), (R + r * std::cos(v)) * std::sin(u)};
+            const V p = torus_point(R, r, u, v);
             const V target = kCenterA + kTilted.apply(p + 0.3 * r * rng.unit());
             const V origin = kCenterA + rng.range(3, 10) * (R + r) * rng.unit();
             c.rays.push_back(make_ray(origin, target - origin));
@@ -568,11 +576,10 @@ void add_torus(Builder& b) {
         {"r/R", ratios, 1e-3}, [](double ratio, int n, Rng& rng) {
           Case c;
           const double R = 1, r = ratio * R;
-          c.objects = nlohmann::json::array(
-              {placed({{"type", "torus"}, {"major_radius", R}, {"minor_radius", r}}, kCenterA, kTilted)});
+          c.objects = nlohmann::json::array({tilted_torus(R, r)});
           for (int i = 0; i < n; ++i) {
             const double u = rng.range(0, 2 * kPi), v = rng.range(0, 2 * kPi);
-            const V p{(R + r * std::cos(v)) * std::cos(u), r * std::sin(v), (R + r * std::cos(v)) * std::sin(u)};
+            const V p = torus_point(R, r, u, v);
             const V N = normalize(kTilted.apply({std::cos(v) * std::cos(u), std::sin(v), std::cos(v) * std::sin(u)}));
             const V P = kCenterA + kTilted.apply(p), T = rng.tangent(N);
             const double L = rng.range(1, 3);

@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "prism/csv.hpp"
 #include "process.hpp"
 
 namespace prism::stability {
@@ -28,13 +29,6 @@ std::string g17(double v) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
   return text;
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
 }
 
 std::string xml(const std::string& s) {

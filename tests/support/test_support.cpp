@@ -1,8 +1,12 @@
 #include "test_support.hpp"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -11,6 +15,8 @@
 #include <stdexcept>
 
 #include "prism/scene_loader.hpp"
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -145,6 +151,48 @@ void write_file(const std::filesystem::path& file, const std::string& contents) 
   out << contents;
   out.close();
   if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+int spawn_with_output(const std::vector<std::string>& args, const std::vector<std::string>& env,
+                      const fs::path& out_file, const fs::path& err_file, const fs::path& cwd, int& pid) {
+  std::vector<std::string> arg_text = args, env_text = env;
+  std::vector<char*> argv, envp;
+  for (auto& a : arg_text) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  for (auto& e : env_text) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
+  pid_t child = 0;
+  const int rc = posix_spawnp(&child, argv[0], &actions, nullptr, argv.data(), env.empty() ? environ : envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  pid = child;
+  return rc;
+}
+
+CapturedRun run_captured(const std::vector<std::string>& args, const std::vector<std::string>& env,
+                         const fs::path& out_file, const fs::path& err_file) {
+  int pid = 0;
+  const int rc = spawn_with_output(args, env, out_file, err_file, {}, pid);
+  CapturedRun run;
+  if (rc != 0) {
+    run.start_error = "cannot start " + args[0] + ": " + std::strerror(rc);
+    return run;
+  }
+  run.started = true;
+  int wstatus = 0;
+  while (::waitpid(pid, &wstatus, 0) < 0 && errno == EINTR) {
+  }
+  run.exited = WIFEXITED(wstatus);
+  if (run.exited) run.status = WEXITSTATUS(wstatus);
+  if (WIFSIGNALED(wstatus)) run.signal = WTERMSIG(wstatus);
+  run.out = read_file(out_file);
+  run.err = read_file(err_file);
+  return run;
 }
 
 }  // namespace prism::test

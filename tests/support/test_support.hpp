@@ -55,6 +55,32 @@ std::string backend_param_name(const testing::TestParamInfo<std::string>& info);
 std::string read_file(const std::filesystem::path& file);
 void write_file(const std::filesystem::path& file, const std::string& contents);
 
+// Starts args[0] (a path, or a name looked up on PATH) with `args` and the
+// environment `env` (NAME=value entries; empty: this process's), in `cwd`
+// when it is not empty, stdin from /dev/null and stdout and stderr going to
+// `out_file` and `err_file`. Returns 0 and sets `pid`, or the errno value of
+// why it could not start.
+int spawn_with_output(const std::vector<std::string>& args, const std::vector<std::string>& env,
+                      const std::filesystem::path& out_file, const std::filesystem::path& err_file,
+                      const std::filesystem::path& cwd, int& pid);
+
+// What a program run by run_captured did.
+struct CapturedRun {
+  bool started = false;     // false: it could not be started (`start_error` says why)
+  bool exited = false;      // it exited normally (not killed by a signal)
+  int status = -1;          // exit status when it exited
+  int signal = 0;           // the signal that killed it otherwise
+  std::string out, err;     // everything it wrote to stdout and stderr
+  std::string start_error;
+};
+
+// Runs the program at path args[0] with `args` and the environment `env`
+// (NAME=value entries; empty: this process's), stdin from /dev/null, and
+// waits for it; stdout and stderr are captured through `out_file` and
+// `err_file`, which stay behind for a look after a failure.
+CapturedRun run_captured(const std::vector<std::string>& args, const std::vector<std::string>& env,
+                         const std::filesystem::path& out_file, const std::filesystem::path& err_file);
+
 // A new, empty folder for this test's files (unique per process and test).
 std::filesystem::path fresh_temp_dir();
 

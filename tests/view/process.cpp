@@ -1,8 +1,6 @@
 #include "process.hpp"
 
-#include <fcntl.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -13,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+
+#include "test_support.hpp"
 
 extern char** environ;
 
@@ -58,22 +58,8 @@ Child::Child(const std::vector<std::string>& argv_text, const RunOptions& option
     if (!starts_with(*e, "PRISM_PLUGIN_PATH=") && !starts_with(*e, "DISPLAY=")) env_text.emplace_back(*e);
   if (options.display) env_text.push_back("DISPLAY=" + *options.display);
 
-  std::vector<std::string> args = argv_text;
-  std::vector<char*> argv, envp;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  for (auto& e : env_text) envp.push_back(e.data());
-  envp.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, out_file_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, err_file_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  if (!options.cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, options.cwd.c_str());
-  pid_t pid = 0;
-  const int rc = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
+  int pid = 0;
+  const int rc = prism::test::spawn_with_output(argv_text, env_text, out_file_, err_file_, options.cwd, pid);
   if (rc == 0) pid_ = pid;
   else command_ += " [cannot start: " + std::string(std::strerror(rc)) + "]";
 }

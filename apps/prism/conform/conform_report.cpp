@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "prism/csv.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_io.hpp"
 #include "prism/texture.hpp"
@@ -199,13 +200,6 @@ Json to_json(const SceneResult& s) {
 
 // ---------------------------------------------------------------------------
 // CSV
-
-std::string csv_field(std::string_view text) {
-  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
 
 std::string csv_row(const std::vector<std::string>& fields) {
   std::string row;
@@ -889,24 +883,6 @@ void write_results_csv(const RunResult& run, const fs::path& file) {
   // Written even when empty, so a stale file from an earlier run never survives.
   write_text_file_atomically(file.parent_path() / (file.stem().string() + "_sweep.csv"), sweep);
 }
-
-namespace {
-
-// One CSV record per line; fields may be quoted, with "" for a quote.
-std::vector<std::string> csv_fields(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted && c == '"' && i + 1 < line.size() && line[i + 1] == '"') fields.back() += line[++i];
-    else if (c == '"') quoted = !quoted;
-    else if (c == ',' && !quoted) fields.emplace_back();
-    else if (c != '\r') fields.back() += c;
-  }
-  return fields;
-}
-
-}  // namespace
 
 StabilityResults read_stability_results(const fs::path& dir) {
   StabilityResults results;

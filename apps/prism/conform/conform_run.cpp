@@ -1,5 +1,4 @@
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
@@ -17,10 +16,6 @@ namespace prism::conform {
 namespace fs = std::filesystem;
 
 namespace {
-
-double ms_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
 
 std::string utc_now() {
   const std::time_t now = std::time(nullptr);
@@ -97,10 +92,10 @@ Timed timed_render(Backend& backend, const RenderSettings& settings) {
     return it == s.ms.end() ? 0.0 : it->second;
   };
   const double compile_before = compile_so_far();
-  const auto start = std::chrono::steady_clock::now();
+  const cli::PhaseTimer timer;
   Timed t;
   t.image = backend.render(settings);
-  const double wall = ms_since(start);
+  const double wall = timer.total();
   t.compile_ms = compile_so_far() - compile_before;
   t.render_ms = std::max(0.0, wall - t.compile_ms);
   return t;
@@ -127,9 +122,12 @@ std::vector<SweepPoint> sweep(Backend& backend, const Scene& scene, const ImageF
   return points;
 }
 
+// A backend under test, probed once for the whole run (a GPU backend's
+// probe starts a device).
 struct Subject {
   std::string name;
   std::shared_ptr<const BackendPlugin> plugin;
+  PrismBackendProbe probe;
 };
 
 class SceneRun {
@@ -184,7 +182,7 @@ class SceneRun {
                             const std::optional<ImageFile>& truth) {
     BackendResult b;
     b.backend = subject.name;
-    const PrismBackendProbe probe = subject.plugin->probe();
+    const PrismBackendProbe& probe = subject.probe;
     if (!probe.usable) {
       b.status = required(subject.name) ? "fail" : "skipped";
       b.reason = std::string("cannot run here: ") + probe.reason +
@@ -192,17 +190,17 @@ class SceneRun {
       return b;
     }
     try {
-      cli::BackendChoice choice = cli::open_backend(registry_, subject.name);
-      choice.backend->prepare(scene);
-      Timed t = timed_render(*choice.backend, settings_for(scene, false));
-      const BackendStats stats = choice.backend->stats();
+      const std::unique_ptr<Backend> backend = cli::start_backend(*subject.plugin, subject.name);
+      backend->prepare(scene);
+      Timed t = timed_render(*backend, settings_for(scene, false));
+      const BackendStats stats = backend->stats();
       b.device = stats.info.count("device") ? stats.info.at("device") : probe.reason;
       b.precision = stats.info.count("precision") ? stats.info.at("precision") : "";
       b.render_ms = t.render_ms;
       b.compile_ms = t.compile_ms;
       b.image = std::move(t.image);
       judge(scene, scene_result, b);
-      if (truth) b.sweep = sweep(*choice.backend, scene, *truth, options_.sweep_max_spp);
+      if (truth) b.sweep = sweep(*backend, scene, *truth, options_.sweep_max_spp);
     } catch (const std::exception& e) {
       b.status = "error";
       b.reason = e.what();
@@ -274,7 +272,10 @@ std::vector<Subject> subjects_for(Registry& registry, const Options& options) {
     for (const std::string& name : registry.backend_names_found())
       if (name != "reference") names.push_back(name);
   std::vector<Subject> subjects;
-  for (const std::string& name : names) subjects.push_back({name, registry.backend(name)});  // InputError when unknown
+  for (const std::string& name : names) {
+    auto plugin = registry.backend(name);  // InputError when unknown
+    subjects.push_back({name, plugin, plugin->probe()});
+  }
   return subjects;
 }
 
@@ -356,14 +357,14 @@ bool RunResult::passed() const {
 
 RunResult run_conformance(Registry& registry, const Options& options,
                           const std::function<void(const std::string&)>& log) {
-  const auto start = std::chrono::steady_clock::now();
+  const cli::PhaseTimer timer;
   RunResult run;
   run.caps = options.caps;
   run.started = utc_now();
   const std::vector<fs::path> files = scene_files(options.scenes);
   const std::vector<Subject> subjects = subjects_for(registry, options);
   for (const fs::path& file : files) run.scenes.push_back(SceneRun(registry, options, log).run(file, subjects));
-  run.wall_ms = ms_since(start);
+  run.wall_ms = timer.total();
   return run;
 }
 
