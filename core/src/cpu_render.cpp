@@ -113,7 +113,9 @@ std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
     r.t = hit.t;
     r.id = hit.id;
     if (hit.id >= 0) {
-      r.normal = surface_of(scene.objects[size_t(hit.id)], ray, hit.prim).normal;
+      const SurfacePoint surface = surface_of(scene.objects[size_t(hit.id)], ray, hit.prim);
+      r.t = surface.t;
+      r.normal = surface.normal;
     } else if (hit.found()) {  // a light sphere: its outward normal at the hit
       const Light& light = scene.lights[size_t(-2 - hit.id)];
       r.normal = glm::normalize(ray.origin + hit.t * ray.dir - light.position);

@@ -1,5 +1,8 @@
 #include "prism/geometry.hpp"
 
+#include <cmath>
+#include <limits>
+
 #include "prism/sdk/sphere_math.hpp"
 
 namespace prism {
@@ -14,7 +17,54 @@ void store(const glm::dvec3& v, double out[3]) {
 
 glm::dvec3 load(const double v[3]) { return {v[0], v[1], v[2]}; }
 
+// The local ray again in long double, from the rotation before rounding and
+// with the direction normalised in long double (as the exact answer has it).
+PrismRayExt to_local_ext(const Object& object, const Ray& ray) {
+  using real = long double;
+  const real o[3] = {real(ray.origin.x) - object.center.x, real(ray.origin.y) - object.center.y,
+                     real(ray.origin.z) - object.center.z};
+  const real d[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+  PrismRayExt local;
+  for (int i = 0; i < 3; ++i) {
+    local.origin[i] = o[i];
+    local.dir[i] = d[i];
+  }
+  if (object.rotation_ext) {
+    const RotationExt& m = *object.rotation_ext;  // local = m^T world
+    for (int i = 0; i < 3; ++i) {
+      local.origin[i] = m[size_t(i)] * o[0] + m[size_t(3 + i)] * o[1] + m[size_t(6 + i)] * o[2];
+      local.dir[i] = m[size_t(i)] * d[0] + m[size_t(3 + i)] * d[1] + m[size_t(6 + i)] * d[2];
+    }
+  }
+  const real length = std::sqrt(local.dir[0] * local.dir[0] + local.dir[1] * local.dir[1] + local.dir[2] * local.dir[2]);
+  for (real& c : local.dir) c /= length;
+  return local;
+}
+
+PrismSurface plugin_surface(const Object& object, const PrismRay& local, const PrismHit& hit) {
+  PrismSurface s{};
+  object.desc->surface(object.record(), &local, &hit, &s);
+  return s;
+}
+
+// The ulps of input error the double path may carry into the local ray (the
+// subtraction of the centre, the rotation, the re-centring): generous, so
+// that a hit is polished before its error could reach 1e-11.
+constexpr double kInputUlps = 8.0;
+constexpr double kPolishBelow = 1e-11;
+
 }  // namespace
+
+bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s) {
+  // One ulp on the local ray moves the point by eps * (|o| + |p|); along the
+  // ray that is that over the cosine between the ray and the surface.
+  const glm::dvec3 n = load(s.normal), d = load(local.dir);
+  const double n_length = glm::length(n);
+  if (!(n_length > 0.0) || !std::isfinite(n_length)) return false;  // undefined normal: nothing to polish against
+  const double cosine = std::abs(glm::dot(n, d)) / n_length;
+  const double reach = glm::length(load(local.origin)) + glm::length(load(s.point));
+  return kInputUlps * std::numeric_limits<double>::epsilon() * reach > kPolishBelow * cosine * t;
+}
 
 PrismRay to_local(const Object& object, const Ray& ray) {
   PrismRay local;
@@ -38,8 +88,17 @@ bool intersect_object(const Object& object, const Ray& ray, double tmin, double 
 
 SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit) {
   PrismRay local = to_local(object, ray);
-  PrismSurface s{};
-  object.desc->surface(object.record(), &local, &hit, &s);
+  PrismSurface s = plugin_surface(object, local, hit);
+  double t = hit.t;
+  if (object.desc->refine && ill_conditioned(local, hit.t, s)) {
+    const PrismRayExt ext = to_local_ext(object, ray);
+    PrismHit polished = hit;
+    object.desc->refine(object.record(), &ext, &polished);
+    if (polished.t != hit.t) {
+      s = plugin_surface(object, local, polished);
+      t = polished.t;
+    }
+  }
   glm::dvec3 point = load(s.point);
   glm::dvec3 normal = load(s.normal);
   if (object.has_rotation) {
@@ -47,6 +106,7 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
     normal = object.rotation * normal;
   }
   SurfacePoint out;
+  out.t = t;
   out.position = object.center + point;
   double length = glm::length(normal);
   // Where the normal is undefined (a quadric's singular point) the format says N = -dir.

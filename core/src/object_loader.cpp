@@ -10,32 +10,39 @@ namespace prism::loader {
 
 using json::Json;
 
-glm::dmat3 read_rotation(const Json& value, const std::string& path) {
+RotationExt read_rotation_ext(const Json& value, const std::string& path) {
+  using real = long double;
   json::ObjectReader r(value, path);
   if (const Json* q = r.find("quaternion")) {
     r.require_absent("axis", "a rotation has either quaternion or axis and degrees, not both");
     r.require_absent("degrees", "a rotation has either quaternion or axis and degrees, not both");
     r.finish();
     auto v = json::read_numbers(*q, r.path_of("quaternion"), 4);
-    double n = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2] + v[3] * v[3]);
+    const real n = std::sqrt(real(v[0]) * v[0] + real(v[1]) * v[1] + real(v[2]) * v[2] + real(v[3]) * v[3]);
     if (n == 0) json::fail(r.path_of("quaternion"), "must be non-zero");
-    double w = v[0] / n, x = v[1] / n, y = v[2] / n, z = v[3] / n;
-    // Column-major (glm): each glm::dvec3 below is a column.
-    return glm::dmat3(glm::dvec3(1 - 2 * (y * y + z * z), 2 * (x * y + w * z), 2 * (x * z - w * y)),
-                      glm::dvec3(2 * (x * y - w * z), 1 - 2 * (x * x + z * z), 2 * (y * z + w * x)),
-                      glm::dvec3(2 * (x * z + w * y), 2 * (y * z - w * x), 1 - 2 * (x * x + y * y)));
+    const real w = v[0] / n, x = v[1] / n, y = v[2] / n, z = v[3] / n;
+    return {1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+            2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+            2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)};
   }
-  glm::dvec3 axis = r.required_vec3("axis");
-  json::require_nonzero(axis, r.path_of("axis"));
-  double degrees = r.required_number("degrees");
+  const glm::dvec3 given = r.required_vec3("axis");
+  json::require_nonzero(given, r.path_of("axis"));
+  const double degrees = r.required_number("degrees");
   r.finish();
-  axis = glm::normalize(axis);
-  double a = glm::radians(degrees), c = std::cos(a), s = std::sin(a), k = 1 - c;
-  double x = axis.x, y = axis.y, z = axis.z;
-  // Rodrigues' formula, right-hand rule; columns again.
-  return glm::dmat3(glm::dvec3(c + x * x * k, y * x * k + z * s, z * x * k - y * s),
-                    glm::dvec3(x * y * k - z * s, c + y * y * k, z * y * k + x * s),
-                    glm::dvec3(x * z * k + y * s, y * z * k - x * s, c + z * z * k));
+  const real n = std::sqrt(real(given.x) * given.x + real(given.y) * given.y + real(given.z) * given.z);
+  const real x = given.x / n, y = given.y / n, z = given.z / n;
+  const real a = degrees * (3.14159265358979323846264338327950288L / 180), c = std::cos(a), s = std::sin(a), k = 1 - c;
+  // Rodrigues' formula, right-hand rule.
+  return {c + x * x * k,     x * y * k - z * s, x * z * k + y * s,
+          y * x * k + z * s, c + y * y * k,     y * z * k - x * s,
+          z * x * k - y * s, z * y * k + x * s, c + z * z * k};
+}
+
+glm::dmat3 rounded(const RotationExt& m) {
+  glm::dmat3 out;  // glm is column-major: out[col][row]
+  for (int row = 0; row < 3; ++row)
+    for (int col = 0; col < 3; ++col) out[col][row] = static_cast<double>(m[size_t(3 * row + col)]);
+  return out;
 }
 
 namespace {
@@ -127,7 +134,9 @@ Object read_object(const Json& value, const std::string& path, Registry& registr
   if (desc.flags & PRISM_PRIMITIVE_TRANSFORMABLE) {
     object.center = r.vec3("center", {0, 0, 0}, json::kLength);
     if (const Json* rot = r.find("rotation")) {
-      object.rotation = read_rotation(*rot, r.path_of("rotation"));
+      auto exact = std::make_shared<const RotationExt>(read_rotation_ext(*rot, r.path_of("rotation")));
+      object.rotation = rounded(*exact);
+      object.rotation_ext = std::move(exact);
       object.has_rotation = true;
     }
   }

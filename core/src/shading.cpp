@@ -52,7 +52,7 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   s.front = glm::dot(ray.dir, sp.normal) < 0;
   s.n = s.front ? sp.normal : -sp.normal;
   s.cosi = std::clamp(-glm::dot(ray.dir, s.n), 0.0, 1.0);
-  s.t = hit.t;
+  s.t = sp.t;
   s.material = &scene_.materials[size_t(object.material)];
   s.color = s.material->color;
   s.alpha = 1.0;
@@ -119,7 +119,7 @@ glm::dvec3 Shader::shade1(const Ray& ray) {
   if (hit.id < 0) return scene_.lights[size_t(-2 - hit.id)].color;
   Surface s = surface_at(ray, hit);
   glm::dvec3 result = local_light(s, ray.dir);
-  if (s.material->dielectric() && !s.front) result *= glm::exp(-s.material->absorb * hit.t);
+  if (s.material->dielectric() && !s.front) result *= glm::exp(-s.material->absorb * s.t);
   return result;
 }
 
@@ -145,7 +145,7 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
     }
     Surface s = surface_at(ray, hit);
     const Material& m = *s.material;
-    if (m.dielectric() && !s.front) w *= glm::exp(-m.absorb * hit.t);
+    if (m.dielectric() && !s.front) w *= glm::exp(-m.absorb * s.t);
     if (!m.dielectric()) {
       double F = m.reflect > 0 ? m.reflect + (1 - m.reflect) * pow5(1 - s.cosi) : 0.0;
       double weight = s.alpha * (1 - F);

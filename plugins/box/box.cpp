@@ -95,6 +95,19 @@ int intersect(const void* record, const PrismRay* ray, double tmin, double tmax,
   return 0;
 }
 
+// The plane of the face `intersect` found (axis hit->part, on the side of
+// the hit point), in long double (see prism/sdk/refine.hpp).
+void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  const int axis = static_cast<int>(hit->part);
+  const long double side = std::signbit(hit->data[axis]) ? -1.0L : 1.0L;
+  const long double h = record_of<BoxRecord>(record).half[axis];
+  Vec3x normal;
+  (axis == 0 ? normal.x : axis == 1 ? normal.y : normal.z) = side;
+  Vec3x p;
+  if (polish_hit(*ray, *hit, [&](const Vec3x& q) { return ImplicitSample{dot(normal, q) - h, normal}; }, &p))
+    store3(p, hit->data);
+}
+
 // The spec's face: argmax |p_i| / h_i, ties going to the lower axis.
 int face_axis(const glm::dvec3& p, const double* h) {
   int a = 0;
@@ -122,7 +135,7 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("box", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
                                                        sizeof(BoxRecord), validate_nothing, pack, bounds, surface,
-                                                       kPluginGlsl, "box");
+                                                       kPluginGlsl, "box", refine);
 
 }  // namespace
 

@@ -195,4 +195,18 @@ TEST(BoxTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "box", {}), "");
 }
 
+TEST(BoxTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // The ray meets the -x face at 2^-20 rad from 2^-20 in front of it; the
+  // long double origin is 2^-56 further, so the face is at t = 1 + 2^-36
+  // (the double ray's t is 1), and the polished hit point moves with it.
+  Shape s = box({1, 1, 1});
+  const double x = -1.0 - 0x1p-20;
+  const dvec3 d(0x1p-20, 0, 1);
+  auto hit = s.intersect({x, 0.25, -0.5}, d);
+  ASSERT_TRUE(hit);
+  Hit polished = s.refine({x - 0x1p-56L, 0.25, -0.5}, {d.x, d.y, d.z}, *hit);
+  EXPECT_NEAR(polished.t, 1.0 + 0x1p-36, 1e-12);  // long double error / 2^-20: ~6e-14
+  EXPECT_NEAR(s.surface({x, 0.25, -0.5}, d, polished).point.z, 0.5 + 0x1p-36, 1e-12);
+}
+
 }  // namespace

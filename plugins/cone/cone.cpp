@@ -32,7 +32,13 @@ void pack(const double* values, void* record) {
   pack_axial_quadric(coef, radius, height, record);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric("cone", kFields, pack, kPluginGlsl, "cone");
+void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  const auto& rec = record_of<AxialQuadricRecord>(record);
+  const long double slope = static_cast<long double>(rec.radius) / rec.height;
+  polish_axial_quadric_hit(-(slope * slope), 0, ray, hit);
+}
+
+const PrismPrimitiveDesc kDesc = describe_axial_quadric("cone", kFields, pack, refine, kPluginGlsl, "cone");
 
 }  // namespace
 

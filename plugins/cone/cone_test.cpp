@@ -137,4 +137,17 @@ TEST(ConeTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "cone", {"quadric"}), "");
 }
 
+TEST(ConeTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // The ray's origin.x carries 2^-58 more in long double than a double can hold;
+  // where it grazes the surface that moves t by ~2e-12 relative, which only a
+  // polish of the long double ray can see (to ~1e-19 / 1.7e-7 rad, a few
+  // 1e-14 relative). Expected t: mpmath at 300 bits.
+  // The slope (1/3)^2 is not a double: the polish forms it in long double.
+  Shape s = cone(1.0, 3.0);  // radius 0.5 at y = 1.5
+  const double c = 0.5 - 0x1p-47;
+  auto hit = s.intersect({c, 1.5, -10}, {0, 0, 1});
+  ASSERT_TRUE(hit);
+  EXPECT_LT(rel_err(s.refine({c + 0x1p-58L, 1.5, -10}, {0, 0, 1}, *hit).t, 9.999999915726885006848134), 1e-13);
+}
+
 }  // namespace

@@ -33,7 +33,12 @@ void pack(const double* values, void* record) {
   pack_axial_quadric(coef, radius, height, record);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric("cylinder", kFields, pack, kPluginGlsl, "cylinder");
+void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  const long double radius = record_of<AxialQuadricRecord>(record).radius;
+  polish_axial_quadric_hit(0, -(radius * radius), ray, hit);
+}
+
+const PrismPrimitiveDesc kDesc = describe_axial_quadric("cylinder", kFields, pack, refine, kPluginGlsl, "cylinder");
 
 }  // namespace
 

@@ -134,4 +134,16 @@ TEST(CylinderTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "cylinder", {"quadric"}), "");
 }
 
+TEST(CylinderTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // The ray's origin.x carries 2^-58 more in long double than a double can hold;
+  // where it grazes the surface that moves t by ~2e-12 relative, which only a
+  // polish of the long double ray can see (to ~1e-19 / 1.7e-7 rad, a few
+  // 1e-14 relative). Expected t: mpmath at 300 bits.
+  Shape s = cylinder(1.0, 2.0);
+  const double c = 1.0 - 0x1p-46;
+  auto hit = s.intersect({c, 1, -10}, {0, 0, 1});
+  ASSERT_TRUE(hit);
+  EXPECT_LT(rel_err(s.refine({c + 0x1p-58L, 1, -10}, {0, 0, 1}, *hit).t, 9.999999831433186728526251), 1e-13);
+}
+
 }  // namespace

@@ -31,6 +31,7 @@ struct PlaneRecord {
   double normal[4];  // unit normal m
   double t1[4];      // spec tangent frame for uv
   double t2[4];
+  double given_normal[4];  // `normal` as the file gives it, for refine (the GPU ignores it)
 };
 static_assert(sizeof(PlaneRecord) % 16 == 0);
 static_assert(glsl_define(kPluginGlsl, "PLANE_POINT") == offsetof(PlaneRecord, point) / sizeof(double));
@@ -63,6 +64,7 @@ void pack(const double* values, void* record) {
   store3(m, rec->normal);
   store3(t1, rec->t1);
   store3(t2, rec->t2);
+  store3(load3(values + 3), rec->given_normal);
 }
 
 int bounds(const void*, double*, double*) { return 0; }  // infinite
@@ -79,6 +81,14 @@ int intersect(const void* record, const PrismRay* ray, double tmin, double tmax,
   return 1;
 }
 
+// dot(normal, p - point) in long double with the normal as given (its
+// double normalisation would tilt the plane by an ulp; see prism/sdk/refine.hpp).
+void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  const auto& rec = record_of<PlaneRecord>(record);
+  const Vec3x normal = load3x(rec.given_normal), point = load3x(rec.point);
+  polish_hit(*ray, *hit, [&](const Vec3x& p) { return ImplicitSample{dot(normal, p - point), normal}; });
+}
+
 void surface(const void* record, const PrismRay* ray, const PrismHit* hit, PrismSurface* out) {
   const auto& rec = record_of<PlaneRecord>(record);
   glm::dvec3 m = load3(rec.normal), point = load3(rec.point);
@@ -92,7 +102,7 @@ void surface(const void* record, const PrismRay* ray, const PrismHit* hit, Prism
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("plane", 0, kFields,
                                                        sizeof(PlaneRecord), validate_nothing, pack, bounds, surface,
-                                                       kPluginGlsl, "plane");
+                                                       kPluginGlsl, "plane", refine);
 
 }  // namespace
 

@@ -146,4 +146,14 @@ TEST(PlaneTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "plane", {}), "");
 }
 
+TEST(PlaneTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // As the ring's: the plane y = 0 given with normal (0, 2, 0), a ray
+  // descending at 2^-20 rad from 2^-20 (+2^-56 in long double) above it.
+  Shape s = plane({0, 0, 0}, {0, 2, 0});
+  const dvec3 d(1, -0x1p-20, 0);
+  auto hit = s.intersect({-1.5, 0x1p-20, 0}, d);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(s.refine({-1.5, 0x1p-20L + 0x1p-56L, 0}, {d.x, d.y, d.z}, *hit).t, 1.0 + 0x1p-36, 1e-12);
+}
+
 }  // namespace

@@ -78,7 +78,7 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 const PrismPrimitiveDesc kDesc =
     describe_primitive<intersect_quadric_record>("quadric", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
                                                  sizeof(QuadricRecord), validate, pack, bounds, surface, kPluginGlsl,
-                                                 "quadric");
+                                                 "quadric", refine_quadric_record);
 
 }  // namespace
 

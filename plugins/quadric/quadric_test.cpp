@@ -284,4 +284,16 @@ TEST(QuadricTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "quadric", {"quadric"}), "");
 }
 
+TEST(QuadricTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // The ray's origin.y carries 2^-58 more in long double than a double can hold;
+  // where it grazes the surface that moves t by ~2e-12 relative, which only a
+  // polish of the long double ray can see (to ~1e-19 / 1.7e-7 rad, a few
+  // 1e-14 relative). Expected t: mpmath at 300 bits.
+  Shape s = quadric({1, 1, 1, 0, 0, 0, 0, 0, 0, -1});
+  const double c = 1.0 - 0x1p-46;
+  auto hit = s.intersect({0, c, -10}, {0, 0, 1});
+  ASSERT_TRUE(hit);
+  EXPECT_LT(rel_err(s.refine({0, c + 0x1p-58L, -10}, {0, 0, 1}, *hit).t, 9.999999831433186728526251), 1e-13);
+}
+
 }  // namespace

@@ -78,6 +78,14 @@ int intersect(const void* record, const PrismRay* ray, double tmin, double tmax,
   return 1;
 }
 
+// The plane y = 0 in long double (see prism/sdk/refine.hpp).
+void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
+  Vec3x p;
+  if (!polish_hit(*ray, *hit, [](const Vec3x& q) { return ImplicitSample{q.y, {0, 1, 0}}; }, &p)) return;
+  p.y = 0;
+  store3(p, hit->data);
+}
+
 void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
   const auto& rec = record_of<RingRecord>(record);
   glm::dvec3 p = load3(hit->data);
@@ -88,7 +96,7 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
                                                        sizeof(RingRecord), validate, pack, bounds, surface,
-                                                       kPluginGlsl, "ring");
+                                                       kPluginGlsl, "ring", refine);
 
 }  // namespace
 

@@ -130,4 +130,16 @@ TEST(RingTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "ring", {}), "");
 }
 
+TEST(RingTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // The ray descends to the ring's plane at 2^-20 rad from 2^-20 above it;
+  // the long double origin is 2^-56 higher, so it lands at t = 1 + 2^-36.
+  Shape s = ring(0.25, 2.0);
+  const dvec3 d(1, -0x1p-20, 0);
+  auto hit = s.intersect({-1.5, 0x1p-20, 0}, d);
+  ASSERT_TRUE(hit);
+  Hit polished = s.refine({-1.5, 0x1p-20L + 0x1p-56L, 0}, {d.x, d.y, d.z}, *hit);
+  EXPECT_NEAR(polished.t, 1.0 + 0x1p-36, 1e-12);  // long double error / 2^-20: ~6e-14
+  EXPECT_NEAR(s.surface({-1.5, 0x1p-20, 0}, d, polished).point.x, -0.5 + 0x1p-36, 1e-12);
+}
+
 }  // namespace

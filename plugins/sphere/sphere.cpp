@@ -55,6 +55,12 @@ int intersect(const void* record, const PrismRay* ray, double tmin, double tmax,
   return 1;
 }
 
+// |p|^2 - r^2 in long double (see prism/sdk/refine.hpp).
+void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  const long double r = record_of<SphereRecord>(record).radius;
+  polish_hit(*ray, *hit, [r](const Vec3x& p) { return ImplicitSample{dot(p, p) - r * r, 2 * p}; });
+}
+
 void surface(const void* record, const PrismRay* ray, const PrismHit* hit, PrismSurface* out) {
   double r = record_of<SphereRecord>(record).radius;
   glm::dvec3 o = load3(ray->origin), d = load3(ray->dir);
@@ -69,7 +75,7 @@ void surface(const void* record, const PrismRay* ray, const PrismHit* hit, Prism
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("sphere", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
                                                        sizeof(SphereRecord), validate_nothing, pack, bounds, surface,
-                                                       kPluginGlsl, "sphere");
+                                                       kPluginGlsl, "sphere", refine);
 
 }  // namespace
 

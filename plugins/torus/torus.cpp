@@ -210,6 +210,21 @@ int intersect(const void* record, const PrismRay* ray, double tmin, double tmax,
   return 1;
 }
 
+// The signed distance from the tube, sqrt((rho - R)^2 + y^2) - r with rho the
+// distance from the y axis, in long double (see prism/sdk/refine.hpp): it
+// stays well scaled for thin tubes, where the quartic's value does not.
+void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  const auto& rec = record_of<TorusRecord>(record);
+  const long double major = rec.major, minor = rec.minor;
+  auto tube_distance = [&](const Vec3x& p) {
+    const long double rho = std::sqrt(p.x * p.x + p.z * p.z), off = rho - major;
+    const long double q = std::sqrt(off * off + p.y * p.y);
+    return ImplicitSample{q - minor, {off * p.x / (rho * q), p.y / q, off * p.z / (rho * q)}};
+  };
+  Vec3x p;
+  if (polish_hit(*ray, *hit, tube_distance, &p)) store3(p, hit->data);
+}
+
 void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
   const auto& rec = record_of<TorusRecord>(record);
   glm::dvec3 p = load3(hit->data);
@@ -231,7 +246,7 @@ void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurf
 
 const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("torus", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
                                                        sizeof(TorusRecord), validate, pack, bounds, surface,
-                                                       kPluginGlsl, "torus");
+                                                       kPluginGlsl, "torus", refine);
 
 }  // namespace
 

@@ -316,4 +316,16 @@ TEST(TorusTest, DescriptorCarriesGpuIntersectorWithTypePrefix) {
   EXPECT_EQ(gpu_intersector_problem(*prism_primitive_entry(), "torus", {"roots"}), "");
 }
 
+TEST(TorusTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
+  // The ray's origin.y (it skims the top of the tube) carries 2^-58 more in long double than a double can hold;
+  // where it grazes the surface that moves t by ~2e-12 relative, which only a
+  // polish of the long double ray can see (to ~1e-19 / 1.7e-7 rad, a few
+  // 1e-14 relative). Expected t: mpmath at 300 bits.
+  Shape s = torus(1.0, 0.25);
+  const double y = 0.25 - 0x1p-48;
+  auto hit = s.intersect({-10, y, 0}, {1, 0, 0});
+  ASSERT_TRUE(hit);
+  EXPECT_LT(rel_err(s.refine({-10, y + 0x1p-58L, 0}, {1, 0, 0}, *hit).t, 8.999999957873736031731213), 1e-13);
+}
+
 }  // namespace

@@ -347,7 +347,7 @@ Summary summarize(const std::string& family, const std::string& param, const std
 }
 
 Caps caps_for(const std::string& precision) {
-  if (precision == "double") return {0.0, 1e-9, 1e-6, 1e-9};
+  if (precision == "double") return {0.0, 1e-10, 1e-6, 1e-9};
   return {0.01, 1e-4, -1, -1};
 }
 

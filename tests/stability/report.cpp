@@ -228,7 +228,11 @@ void write_svg(const fs::path& file, const std::vector<Summary>& rows, const std
     }
   }
   // The caps.
-  for (const auto& [cap, label] : {std::pair<double, const char*>{1e-9, "double cap 1e-9"}, {1e-4, "GPU cap 1e-4"}}) {
+  const double double_cap = caps_for("double").t_rel_p99, gpu_cap = caps_for("float").t_rel_p99;
+  char double_label[32], gpu_label[32];
+  std::snprintf(double_label, sizeof double_label, "double cap %g", double_cap);
+  std::snprintf(gpu_label, sizeof gpu_label, "GPU cap %g", gpu_cap);
+  for (const auto& [cap, label] : {std::pair<double, const char*>{double_cap, double_label}, {gpu_cap, gpu_label}}) {
     std::snprintf(buf, sizeof buf,
                   "<line x1=\"%.1f\" y1=\"%.1f\" x2=\"%.1f\" y2=\"%.1f\" stroke=\"#888\" stroke-dasharray=\"6 4\"/>\n"
                   "<text x=\"%.1f\" y=\"%.1f\" fill=\"#555\" text-anchor=\"end\">%s</text>\n",

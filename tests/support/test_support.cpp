@@ -133,10 +133,13 @@ Image BackendTest::render(const Scene& scene) {
   return render(scene, settings);
 }
 
-std::vector<TraceResult> BackendTest::trace(const Scene& scene, std::span<const TraceQuery> rays) {
+std::vector<TraceResult> BackendTest::trace(const Scene& scene, std::span<const TraceQuery> rays,
+                                            BackendStats* stats) {
   std::unique_ptr<Backend> backend = plugin_->create();
   backend->prepare(scene);
-  return backend->trace(rays);
+  std::vector<TraceResult> hits = backend->trace(rays);
+  if (stats) *stats = backend->stats();
+  return hits;
 }
 
 std::string read_file(const std::filesystem::path& file) {

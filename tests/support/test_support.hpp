@@ -94,7 +94,8 @@ class BackendTest : public testing::TestWithParam<std::string> {
   // A fresh backend prepared for `scene`, rendering with `settings` (default: the scene's image).
   Image render(const Scene& scene, const RenderSettings& settings);
   Image render(const Scene& scene);
-  std::vector<TraceResult> trace(const Scene& scene, std::span<const TraceQuery> rays);
+  std::vector<TraceResult> trace(const Scene& scene, std::span<const TraceQuery> rays,
+                                 BackendStats* stats = nullptr);
 
   Registry registry_;  // declared first: outlives every plugin object made from it
 

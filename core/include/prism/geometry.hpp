@@ -30,6 +30,7 @@ struct Hit {
 };
 
 struct SurfacePoint {
+  double t = 0;            // the hit's t, polished where the double t was ill-conditioned
   glm::dvec3 position{0};  // world P
   glm::dvec3 normal{0};    // world outward unit N (-dir where undefined)
   glm::dvec2 uv{0};
@@ -42,7 +43,14 @@ PrismRay to_local(const Object& object, const Ray& ray);
 bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit);
 
 // World-space point, outward normal and uv of a hit found by intersect_object.
+// Where one ulp of input rounding could move the hit's t by more than ~1e-11
+// relative (a grazing ray, a hit far from the object's origin), the plugin's
+// `refine` first polishes t in long double; `t` is the result.
 SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit);
+
+// Whether a hit at `t` on the local ray, with local surface point and
+// normal `s`, is that ill-conditioned (exposed for tests).
+bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s);
 
 // Closest light sphere with tmin < t <= tmax (ties: lower light index).
 Hit intersect_light_spheres(const Scene& scene, const Ray& ray, double tmin, double tmax);

@@ -16,6 +16,9 @@
  * `rotation` before calling it (rotations keep `t`). Hit first, shading
  * later: `intersect` returns `t` plus whatever the plugin needs, and
  * `surface` computes point, normal and uv for the winning hit only.
+ *
+ * Version 2 added `refine`: a polish of an ill-conditioned winning hit in
+ * extended precision (grazing rays, hits far from the object's origin).
  */
 #ifndef PRISM_PRIMITIVE_ABI_H
 #define PRISM_PRIMITIVE_ABI_H
@@ -27,7 +30,7 @@
 extern "C" {
 #endif
 
-#define PRISM_PRIMITIVE_ABI_VERSION 1u
+#define PRISM_PRIMITIVE_ABI_VERSION 2u
 #define PRISM_PRIMITIVE_ENTRY_SYMBOL "prism_primitive_entry"
 #define PRISM_EXPORT __attribute__((visibility("default")))
 
@@ -63,6 +66,14 @@ typedef struct PrismRay {
   double origin[3];
   double dir[3]; /* unit length */
 } PrismRay;
+
+/* The same local-frame ray in extended precision (long double: x87 80-bit
+ * on x86-64, binary128 on aarch64), for `refine`: the world ray moved by a
+ * rotation computed in that precision, `dir` normalised in it. */
+typedef struct PrismRayExt {
+  long double origin[3];
+  long double dir[3];
+} PrismRayExt;
 
 typedef struct PrismHit {
   double t;
@@ -118,6 +129,16 @@ typedef struct PrismPrimitiveDesc {
    * (core/glsl/<module>.glsl); all other global names start with the prefix. */
   const char* glsl_source;
   const char* glsl_prefix;
+
+  /* Optional (NULL: none). Polishes a hit that `intersect` returned for the
+   * double-rounded version of `ray`: Newton steps on the surface's implicit
+   * equation, evaluated in extended precision, from hit->t. Updates hit->t
+   * and whatever `surface` reads from the hit (data, part), and leaves the
+   * hit unchanged when the polish does not converge to the same root. The
+   * core calls it only for a winning hit whose double t is ill-conditioned:
+   * an input rounding of one ulp moves it by more than ~1e-11 relative
+   * (see prism::surface_of). */
+  void (*refine)(const void* record, const PrismRayExt* ray, PrismHit* hit);
 } PrismPrimitiveDesc;
 
 typedef const PrismPrimitiveDesc* (*PrismPrimitiveEntryFn)(void);

@@ -58,6 +58,10 @@ struct Box3 {
   glm::dvec3 lo{0}, hi{0};
 };
 
+// A rotation in long double, row-major, local -> world: what polishing an
+// ill-conditioned hit moves the ray with (PrismPrimitiveDesc::refine).
+using RotationExt = std::array<long double, 9>;
+
 // One object: a primitive plugin, its packed parameter record, and its frame.
 struct Object {
   const PrimitivePlugin* plugin = nullptr;
@@ -66,6 +70,7 @@ struct Object {
   glm::dvec3 center{0, 0, 0};
   glm::dmat3 rotation{1.0};  // local -> world
   bool has_rotation = false; // false: rotation is identity, skip the multiply
+  std::shared_ptr<const RotationExt> rotation_ext;  // `rotation` before rounding; null when identity
   std::vector<std::byte> record_storage;  // record_size bytes, 16-aligned start
   bool bounded = false;
   Box3 world_bounds;  // valid when bounded

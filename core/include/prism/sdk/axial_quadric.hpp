@@ -40,8 +40,8 @@ inline void pack_axial_quadric(const double coef[10], double radius, double heig
 
 inline int axial_quadric_bounds(const void* record, double lo[3], double hi[3]) {
   const auto& rec = record_of<AxialQuadricRecord>(record);
-  store3({-rec.radius, 0.0, -rec.radius}, lo);
-  store3({rec.radius, rec.height, rec.radius}, hi);
+  store3(glm::dvec3(-rec.radius, 0.0, -rec.radius), lo);
+  store3(glm::dvec3(rec.radius, rec.height, rec.radius), hi);
   return 1;
 }
 
@@ -52,16 +52,24 @@ inline void axial_quadric_surface(const void* record, const PrismRay*, const Pri
   write_surface(out, point, normal, turn_fraction(point.z, point.x), point.y / height);
 }
 
+// Polishes a hit on x^2 + B y^2 + z^2 + J = 0 (refine.hpp), with B and J
+// formed in long double from radius and height: the packed doubles
+// -radius^2 and -(radius/height)^2 are rounded.
+inline void polish_axial_quadric_hit(long double b, long double j, const PrismRayExt* ray, PrismHit* hit) {
+  const long double coef[10] = {1, b, 1, 0, 0, 0, 0, 0, 0, j};
+  polish_quadric_hit(coef, ray, hit);
+}
+
 // The descriptor of a plugin whose `pack` calls pack_axial_quadric.
 template <size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_axial_quadric(const char* type_name, const PrismField (&fields)[FieldCount],
-                                                    void (*pack)(const double*, void*),
+                                                    void (*pack)(const double*, void*), RefineFn refine,
                                                     const char* glsl_source = nullptr,
                                                     const char* glsl_prefix = nullptr) {
   return describe_primitive<intersect_quadric_record>(type_name, PRISM_PRIMITIVE_TRANSFORMABLE, fields,
                                                       sizeof(AxialQuadricRecord), validate_nothing, pack,
                                                       axial_quadric_bounds, axial_quadric_surface, glsl_source,
-                                                      glsl_prefix);
+                                                      glsl_prefix, refine);
 }
 
 }  // namespace prism::sdk

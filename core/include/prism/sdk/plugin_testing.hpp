@@ -68,6 +68,16 @@ class Shape {
     return {load3(s.point), load3(s.normal), {s.uv[0], s.uv[1]}};
   }
 
+  // The plugin's `refine` of `hit` for the same ray given in long double
+  // (the hit unchanged when the plugin has no refine).
+  Hit refine(const Vec3x& o, const Vec3x& d, Hit hit) const {
+    if (!desc_->refine) return hit;
+    const PrismRayExt ray{{o.x, o.y, o.z}, {d.x, d.y, d.z}};
+    desc_->refine(record(), &ray, &hit.raw);
+    hit.t = hit.raw.t;
+    return hit;
+  }
+
   static PrismRay make_ray(const glm::dvec3& o, const glm::dvec3& d) {
     PrismRay ray{};
     store3(o, ray.origin);

@@ -14,6 +14,7 @@
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
+#include "prism/sdk/refine.hpp"
 
 namespace prism::sdk {
 
@@ -71,6 +72,7 @@ constexpr PrismField positive_length(const char* name, uint32_t count, const cha
 inline int validate_nothing(const double*, PrismError*) { return 0; }
 
 using IntersectFn = int (*)(const void*, const PrismRay*, double, double, PrismHit*);
+using RefineFn = void (*)(const void*, const PrismRayExt*, PrismHit*);
 
 // intersect_batch for plugins whose batch is just a loop over `intersect`.
 template <IntersectFn Intersect>
@@ -81,7 +83,8 @@ void intersect_batch(const void* record, size_t count, const PrismRay* rays, con
 
 // A plugin's descriptor table from the parts that differ between plugins;
 // the batch query is the loop over `Intersect`. `glsl_source` defines
-// `<glsl_prefix>_intersect` and `<glsl_prefix>_surface` (see primitive_abi.h).
+// `<glsl_prefix>_intersect` and `<glsl_prefix>_surface` (see primitive_abi.h);
+// `refine` polishes ill-conditioned hits (prism/sdk/refine.hpp).
 template <IntersectFn Intersect, size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t flags,
                                                 const PrismField (&fields)[FieldCount], uint32_t record_size,
@@ -90,7 +93,8 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                                                 int (*bounds)(const void*, double*, double*),
                                                 void (*surface)(const void*, const PrismRay*, const PrismHit*,
                                                                 PrismSurface*),
-                                                const char* glsl_source = nullptr, const char* glsl_prefix = nullptr) {
+                                                const char* glsl_source = nullptr, const char* glsl_prefix = nullptr,
+                                                RefineFn refine = nullptr) {
   return PrismPrimitiveDesc{PRISM_PRIMITIVE_ABI_VERSION,
                             sizeof(PrismPrimitiveDesc),
                             type_name,
@@ -107,7 +111,8 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                             intersect_batch<Intersect>,
                             surface,
                             glsl_source,
-                            glsl_prefix};
+                            glsl_prefix,
+                            refine};
 }
 
 // Fills a PrismSurface from local point, normal and uv.

@@ -143,6 +143,21 @@ inline int intersect_quadric_record(const void* record, const PrismRay* ray, dou
   return 1;
 }
 
+// Polishes a hit from intersect_quadric_record on the quadric with
+// coefficients `coef` (A..J) in long double (see refine.hpp).
+inline void polish_quadric_hit(const long double coef[10], const PrismRayExt* ray, PrismHit* hit) {
+  Vec3x p;
+  if (polish_hit(*ray, *hit, [coef](const Vec3x& q) { return quadric_implicit(coef, q); }, &p)) store3(p, hit->data);
+}
+
+// The descriptor's `refine` for the quadric plugin: its own coefficients,
+// which are the file's numbers unrounded.
+inline void refine_quadric_record(const void* record, const PrismRayExt* ray, PrismHit* hit) {
+  long double coef[10];
+  for (int i = 0; i < 10; ++i) coef[i] = record_of<QuadricShape>(record).coef[i];
+  polish_quadric_hit(coef, ray, hit);
+}
+
 // Point and normal of a hit from intersect_quadric_record (uv is the caller's).
 inline void quadric_record_surface(const void* record, const PrismHit* hit, glm::dvec3& point, glm::dvec3& normal) {
   quadric_surface(record_of<QuadricShape>(record), load3(hit->data), point, normal);
