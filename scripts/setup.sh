@@ -12,6 +12,7 @@ packages=(
   libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
   xvfb xauth x11-apps glslang-tools spirv-tools chromium
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-dev
+  povray
 )
 missing=()
 for p in "${packages[@]}"; do

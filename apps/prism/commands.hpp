@@ -14,5 +14,6 @@ Command add_render_command(CLI::App& app);
 Command add_trace_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
 Command add_conform_command(CLI::App& app);
+Command add_bench_command(CLI::App& app);
 
 }  // namespace prism::cli

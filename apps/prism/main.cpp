@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add(prism::cli::add_trace_command);
   add(prism::cli::add_view_command);
   add(prism::cli::add_conform_command);
+  add(prism::cli::add_bench_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

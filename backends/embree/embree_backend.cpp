@@ -23,6 +23,7 @@ class EmbreeBackend final : public Backend {
     const auto start = std::chrono::steady_clock::now();
     query_ = std::make_unique<EmbreeQuery>(scene, device_);
     stats_.info["precision"] = "double";
+    stats_.counters["scene_bytes"] = double(device_.bytes()) + double(scene.packed_object_bytes());
     stats_.ms["build"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     scene_ = &scene;
   }

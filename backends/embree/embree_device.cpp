@@ -25,6 +25,12 @@ Device::Device() {
                        error_name(rtcGetDeviceError(nullptr)) + ")");
   }
   rtcSetDeviceErrorFunction(device_, &Device::on_error, this);
+  rtcSetDeviceMemoryMonitorFunction(device_, &Device::on_memory, this);
+}
+
+bool Device::on_memory(void* self, ssize_t bytes, bool) {
+  static_cast<Device*>(self)->bytes_ += bytes;  // negative when Embree frees
+  return true;                                  // never refuse an allocation
 }
 
 Device::~Device() { rtcReleaseDevice(device_); }

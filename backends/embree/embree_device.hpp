@@ -4,6 +4,8 @@
 // records the first message and check() throws it on the caller's side.
 #pragma once
 
+#include <atomic>
+#include <cstdint>
 #include <mutex>
 #include <string>
 
@@ -24,12 +26,16 @@ class Device {
   void check(const char* what);
   // "3.13.5 (tasking: TBB)".
   std::string describe() const;
+  // Bytes Embree holds now (its memory monitor's running total).
+  int64_t bytes() const { return bytes_.load(); }
 
  private:
   static void on_error(void* self, RTCError code, const char* message);
+  static bool on_memory(void* self, ssize_t bytes, bool post);
   RTCDevice device_ = nullptr;
   std::mutex mutex_;
   std::string error_;  // first unreported error, empty when none
+  std::atomic<int64_t> bytes_{0};
 };
 
 // Embree's name for an error code ("RTC_ERROR_OUT_OF_MEMORY").

@@ -211,6 +211,11 @@ const std::vector<Feature>& all_features() {
 const char* feature_name(Feature f) { return info(f).name; }
 std::string feature_macro(Feature f) { return info(f).macro; }
 
+size_t PackedScene::buffer_bytes() const {
+  const auto bytes = [](const auto& v) { return v.size() * sizeof(v[0]); };
+  return bytes(records) + bytes(objects) + bytes(nodes) + bytes(materials) + bytes(lights) + bytes(texels);
+}
+
 PackedScene pack_scene(const Scene& scene) {
   Packer p{scene, {}, {}, {}};
   p.pack_textures();

@@ -46,6 +46,8 @@ struct PackedScene {
   GpuFrame frame{};  // scene constants; camera and image fields filled per render
   int bounded_objects = 0;
   int bvh_depth = 0;
+  // Bytes of the buffers the kernel reads (records, objects, BVH, materials, lights, texels).
+  size_t buffer_bytes() const;
 };
 
 // Packs `scene`. Throws RuntimeError when an object's plugin has no GLSL.

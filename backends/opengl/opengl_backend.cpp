@@ -98,6 +98,7 @@ class OpenGLBackend : public Backend {
     state->texels = buffer_of(p.texels);
     glFinish();
     check_gl("scene upload");
+    stats_.counters["scene_bytes"] = double(p.buffer_bytes());
     state_ = std::move(state);
     stats_.ms["build"] = ms_since(start);
   }

@@ -47,6 +47,7 @@ class ReferenceBackend : public Backend {
     scene_ = &scene;
     query_ = std::make_unique<BruteForceQuery>(scene);
     stats_.info["precision"] = "double";
+    stats_.counters["scene_bytes"] = double(scene.packed_object_bytes());
     stats_.ms["build"] = 0.0;  // nothing to build: that is the point of this backend
   }
   Image render(const RenderSettings& settings) override { return render_cpu(*scene_, *query_, settings, stats_); }

@@ -82,6 +82,7 @@ class VulkanBackend : public Backend {
     s->materials = upload(*context_, *commands_, p.materials, "materials");
     s->lights = upload(*context_, *commands_, p.lights, "lights");
     s->texels = upload(*context_, *commands_, p.texels, "texels");
+    stats_.counters["scene_bytes"] = double(p.buffer_bytes());
     scene_ = std::move(s);
     stats_.ms["build"] = ms_since(start);
     check_validation("scene upload");

@@ -23,9 +23,15 @@ std::string lower_extension(const fs::path& file) {
 }
 
 // A temporary name beside `file` (same folder, so the rename is atomic),
-// keeping the extension so OpenImageIO picks the right writer.
+// keeping the extension so OpenImageIO picks the right writer. Appended
+// piece by piece: GCC 12 at -O3 misreports `"." + string` as overlapping
+// memory (-Wrestrict, GCC bug 105329).
 fs::path temporary_name(const fs::path& file) {
-  return file.parent_path() / ("." + file.stem().string() + ".tmp" + std::to_string(::getpid()) + file.extension().string());
+  std::string name = ".";
+  name += file.stem().string();
+  name += ".tmp" + std::to_string(::getpid());
+  name += file.extension().string();
+  return file.parent_path() / name;
 }
 
 // Runs `write` on a temporary file, then renames it over `file`; on any

@@ -11,4 +11,10 @@ std::vector<std::string> Scene::plugin_names() const {
   return names;
 }
 
+size_t Scene::packed_object_bytes() const {
+  size_t bytes = 0;
+  for (const Object& object : objects) bytes += sizeof(Object) + object.record_storage.size();
+  return bytes;
+}
+
 }  // namespace prism

@@ -114,6 +114,9 @@ struct Scene {
   std::vector<std::shared_ptr<const PrimitivePlugin>> plugins;
 
   std::vector<std::string> plugin_names() const;
+  // Bytes of the objects' frames and packed records: what every backend
+  // holds for the geometry before any acceleration structure.
+  size_t packed_object_bytes() const;
 };
 
 }  // namespace prism
