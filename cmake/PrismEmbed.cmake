@@ -1,7 +1,10 @@
 # prism_embed_text(<target> <file> <symbol>): makes the text of <file> (a
 # GLSL source) available to <target> as `inline constexpr char <symbol>[]`
 # from the header "<file name>.hpp" (e.g. `#include "torus.glsl.hpp"`),
-# regenerated whenever the file changes.
+# regenerated whenever the file changes. Installed with the CMake package.
+include_guard(GLOBAL)
+set(PRISM_EMBED_TEXT_SCRIPT "${CMAKE_CURRENT_LIST_DIR}/embed_text.cmake")
+
 function(prism_embed_text target file symbol)
   get_filename_component(source "${file}" ABSOLUTE)
   get_filename_component(name "${file}" NAME)
@@ -10,8 +13,8 @@ function(prism_embed_text target file symbol)
   add_custom_command(
     OUTPUT "${header}"
     COMMAND ${CMAKE_COMMAND} -DINPUT=${source} -DOUTPUT=${header} -DNAME=${symbol}
-            -P ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
-    DEPENDS "${source}" ${PROJECT_SOURCE_DIR}/cmake/embed_text.cmake
+            -P ${PRISM_EMBED_TEXT_SCRIPT}
+    DEPENDS "${source}" ${PRISM_EMBED_TEXT_SCRIPT}
     COMMENT "Embedding ${name}"
     VERBATIM)
   target_sources(${target} PRIVATE "${header}")

@@ -1,22 +1,20 @@
 # Declaring plugins. A primitive plugin is one folder under plugins/ that calls
 #   prism_add_primitive_plugin(<type> SOURCES ... [GLSL <file>] [TESTS ...])
-# and builds libprism_primitive_<type>.so into the plugin folder. The GLSL
-# file (the GPU intersector) is embedded as `kPluginGlsl` in "<file>.hpp". Its tests link
-# the same sources directly (an object library), so they exercise exactly the
-# code the shared object exports.
+# and builds libprism_primitive_<type>.so into the plugin folder, exactly as
+# a plugin outside the tree does against the installed package
+# (cmake/PrismPrimitivePlugin.cmake), plus its install rule and tests. The
+# tests link the same sources directly (the object library), so they
+# exercise exactly the code the shared object exports.
+include(${CMAKE_CURRENT_LIST_DIR}/PrismPrimitivePlugin.cmake)
 
 function(prism_add_primitive_plugin type)
   cmake_parse_arguments(ARG "" "GLSL" "SOURCES;TESTS" ${ARGN})
   set(objects prism_primitive_${type}_objects)
-  add_library(${objects} OBJECT ${ARG_SOURCES})
-  target_link_libraries(${objects} PUBLIC prism_sdk)
   if(ARG_GLSL)
-    prism_embed_text(${objects} ${ARG_GLSL} kPluginGlsl)
+    prism_primitive_plugin_library(${type} SDK prism_sdk SOURCES ${ARG_SOURCES} GLSL ${ARG_GLSL})
+  else()
+    prism_primitive_plugin_library(${type} SDK prism_sdk SOURCES ${ARG_SOURCES})
   endif()
-  add_library(prism_primitive_${type} MODULE $<TARGET_OBJECTS:${objects}>)
-  target_link_libraries(prism_primitive_${type} PRIVATE prism_sdk)
-  set_target_properties(prism_primitive_${type} PROPERTIES
-    PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY ${PRISM_PLUGIN_OUTPUT_DIR})
   install(TARGETS prism_primitive_${type} LIBRARY DESTINATION lib/prism)
   set_property(GLOBAL APPEND PROPERTY PRISM_PLUGIN_TARGETS prism_primitive_${type})
   if(PRISM_BUILD_TESTS AND ARG_TESTS)

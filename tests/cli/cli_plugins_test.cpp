@@ -186,4 +186,39 @@ TEST_F(PluginFaults, MissingSearchFolderIsHarmless) {
 }
 
 }  // namespace
+// A backend that throws prism::RuntimeError from render and trace: the
+// message reaches the user and the exit status is 1, although the plugin
+// that threw it is unloaded before main() catches it (the error's vtable is
+// the core's; a copy inside the plugin crashed here with SIGSEGV).
+class ThrowingBackend : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    plugins_ = path("plugins");
+    fs::create_directory(plugins_);
+    const fs::path file = bad_plugin_folder() / "libprism_backend_throwing.so";
+    ASSERT_TRUE(fs::exists(file)) << file << " is not built";
+    fs::copy_file(file, plugins_ / file.filename());
+    scene_ = write("scene.json", SceneText{}.text()).string();
+  }
+  fs::path plugins_;
+  std::string scene_;
+};
+
+TEST_F(ThrowingBackend, RenderFailureIsReportedWithExitOne) {
+  RunResult r = run({"render", scene_, "-b", "throwing", "-o", path("out.png").string()}, plugins_.string());
+  EXPECT_TRUE(ExitedWith(r, 1));
+  EXPECT_TRUE(StderrHas(r, {"deliberate failure in render"}));
+  EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
+TEST_F(ThrowingBackend, TraceFailureIsReportedWithExitOne) {
+  const fs::path rays = write("rays.csv", "0,0,-5,0,0,1\n");
+  RunResult r = run({"trace", scene_, "-b", "throwing", "--rays", rays.string(), "-o", path("hits.csv").string()},
+                    plugins_.string());
+  EXPECT_TRUE(ExitedWith(r, 1));
+  EXPECT_TRUE(StderrHas(r, {"deliberate failure in trace"}));
+  EXPECT_FALSE(fs::exists(path("hits.csv")));
+}
+
 }  // namespace prism::cli_test

@@ -56,7 +56,7 @@ typedef struct PrismField {
   double max;              /* per entry; +INFINITY for none */
   double null_value;       /* what null reads as (ARRAY_OR_NULL) */
   const double* defaults;  /* `count` entries, NULL when required */
-  const char* doc;         /* one line for `prism plugin check` and docs */
+  const char* doc;         /* one line of documentation for the field */
 } PrismField;
 
 /* Descriptor flags. */
