@@ -15,5 +15,6 @@ Command add_trace_command(CLI::App& app);
 Command add_view_command(CLI::App& app);
 Command add_conform_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
+Command add_plugin_command(CLI::App& app);
 
 }  // namespace prism::cli

@@ -1,5 +1,6 @@
 // prism: list the plugins, render a scene, trace a batch of rays, view a scene
-// live, check every backend against the reference (conform).
+// live, check every backend against the reference (conform), measure frame
+// rates (bench), check a primitive plugin (plugin check).
 // Exit status: 0 success, 2 bad input (scene, flag, CSV line, unknown
 // backend, plugin that fails to load), 1 failure at run time.
 #include <cstdio>
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   add(prism::cli::add_view_command);
   add(prism::cli::add_conform_command);
   add(prism::cli::add_bench_command);
+  add(prism::cli::add_plugin_command);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,0 +1,66 @@
+// `prism plugin check FILE.so`: the descriptor it prints, the self-test of a
+// plugin's CPU intersector against every backend, and what it refuses.
+#include <gtest/gtest.h>
+
+#include "cli_harness.hpp"
+
+namespace prism::cli_test {
+namespace {
+
+fs::path built_plugin(const std::string& type) {
+  return default_plugin_folder() / ("libprism_primitive_" + type + ".so");
+}
+
+class PluginCheck : public CliTest {};
+
+TEST_F(PluginCheck, PrintsTheDescriptorAndPassesOnEmbree) {
+  RunResult r = run({"plugin", "check", built_plugin("torus").string(), "-b", "embree"});
+  ASSERT_TRUE(ExitedWith(r, 0));
+  for (const char* part : {"torus 1.0.0 (ABI 2)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
+                           "major_radius", "minor_radius", "required", "embree (double): ids agree on 100.000 %",
+                           "PASS"})
+    EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
+  EXPECT_EQ(r.out.find("FAIL"), std::string::npos) << r.out;
+}
+
+TEST_F(PluginCheck, PassesOnEveryGpuBackendBuilt) {
+  for (const std::string& backend : backends_built()) {
+    if (backend != "opengl" && backend != "vulkan") continue;
+    SCOPED_TRACE(backend);
+    RunResult r = run({"plugin", "check", built_plugin("sphere").string(), "-b", backend, "--rays", "500"});
+    if (r.out.find("skipped, cannot run here") != std::string::npos) continue;  // PRISM_REQUIRE_BACKENDS guards CI
+    EXPECT_TRUE(ExitedWith(r, 0));
+    EXPECT_NE(r.out.find(backend + " (double geometry, float32 shading): ids agree on 100.000 %"), std::string::npos)
+        << r.out;
+  }
+}
+
+TEST_F(PluginCheck, WrongBoundsFailOnEmbree) {
+  // The fixture's bounds are half its size: Embree culls rays the plugin would hit.
+  RunResult r = run({"plugin", "check", (bad_plugin_folder() / "libprism_primitive_badbounds.so").string(), "-b",
+                     "embree"});
+  EXPECT_TRUE(ExitedWith(r, 1));
+  EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r.out;
+}
+
+TEST_F(PluginCheck, BadInputExitsTwo) {
+  RunResult wrong_abi = run({"plugin", "check", (bad_plugin_folder() / "libprism_primitive_wrongabi.so").string()});
+  EXPECT_TRUE(ExitedWith(wrong_abi, 2));
+  EXPECT_TRUE(StderrHas(wrong_abi, {"not a usable primitive plugin", "ABI version 999"}));
+
+  RunResult missing = run({"plugin", "check", path("nothing.so").string()});
+  EXPECT_TRUE(ExitedWith(missing, 2));
+  EXPECT_TRUE(StderrHas(missing, {"nothing.so"}));
+
+  RunResult invalid = run({"plugin", "check", built_plugin("ring").string(), "-b", "embree", "--object",
+                           R"({"inner_radius": 3, "outer_radius": 1})"});
+  EXPECT_TRUE(ExitedWith(invalid, 2));
+  EXPECT_TRUE(StderrHas(invalid, {"objects[0].outer_radius", "--object"}));
+
+  RunResult not_json = run({"plugin", "check", built_plugin("ring").string(), "--object", "{oops"});
+  EXPECT_TRUE(ExitedWith(not_json, 2));
+  EXPECT_TRUE(StderrHas(not_json, {"--object"}));
+}
+
+}  // namespace
+}  // namespace prism::cli_test
