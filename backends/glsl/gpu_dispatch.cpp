@@ -6,6 +6,16 @@
 
 namespace prism::gpu {
 
+KernelOptions kernel_options(bool trace, const char* api_glue) {
+  KernelOptions options;
+  options.trace = trace;
+  options.all_features = all_features_forced();
+  options.api_glue = api_glue;
+  options.local_size_x = trace ? kTraceLocalSize : kRenderLocalSize;
+  options.local_size_y = trace ? 1 : kRenderLocalSize;
+  return options;
+}
+
 static_assert(std::size(kRayKindNames) <= kRayCounterCount);
 
 namespace {

@@ -126,7 +126,8 @@ class OpenGLBackend : public Backend {
       const uint32_t zero[gpu::kRayCounterCount] = {};
       output.write(0, sizeof zero, zero);
       glUniform4i(0, tile.x0, tile.y0, tile.width, tile.height);
-      glDispatchCompute(GLuint((tile.width + 7) / 8), GLuint((tile.height + 7) / 8), 1);
+      glDispatchCompute(GLuint((tile.width + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize),
+                        GLuint((tile.height + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize), 1);
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
       output.read(0, sizeof counters, counters);
       output.read(gpu::kOutputHeaderBytes, size_t(tile.width) * tile.height * sizeof(GpuPixel), pixels.data());
@@ -187,15 +188,7 @@ class OpenGLBackend : public Backend {
     if (!state_) throw RuntimeError("opengl backend: render or trace before prepare");
     GLuint& program = trace ? state_->trace_program : state_->render_program;
     if (program) return program;
-    gpu::KernelOptions options;
-    options.trace = trace;
-    options.all_features = gpu::all_features_forced();
-    options.api_glue = kApiGlue;
-    if (trace) {
-      options.local_size_x = kTraceLocalSize;
-      options.local_size_y = 1;
-    }
-    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, options);
+    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, gpu::kernel_options(trace, kApiGlue));
     gl::ProgramStats build;
     program = gl::build_program(kernel.text, context_->driver_identity(), build);
     auto start = std::chrono::steady_clock::now();

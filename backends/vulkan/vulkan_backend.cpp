@@ -189,15 +189,7 @@ class VulkanBackend : public Backend {
     if (!scene_) throw RuntimeError("vulkan backend: render or trace before prepare");
     std::optional<Kernel>& slot = trace ? scene_->trace : scene_->render;
     if (slot) return *slot;
-    gpu::KernelOptions options;
-    options.trace = trace;
-    options.all_features = gpu::all_features_forced();
-    options.api_glue = kApiGlue;
-    if (trace) {
-      options.local_size_x = gpu::kTraceLocalSize;
-      options.local_size_y = 1;
-    }
-    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, options);
+    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue));
     vk::PipelineStats build;
     Kernel kernel;
     kernel.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
