@@ -74,7 +74,7 @@ struct QueryContext {
   double tmax = 0;           // occluded: 0 < t < tmax
   double shift = 0;          // Embree's tau = world t - shift
   Hit best;                  // closest so far (double t, id, plugin data)
-  bool blocked = false;      // occluded: an object blocks the ray
+  int32_t blocker = kMissId; // occluder: an object that blocks the ray
 };
 static_assert(std::is_standard_layout_v<QueryContext>);
 
@@ -111,11 +111,6 @@ void consider(QueryContext& ctx, const Object& object, int32_t id) {
   ctx.best.t = hit.t;
   ctx.best.id = id;
   ctx.best.prim = hit;
-}
-
-bool blocks(const QueryContext& ctx, const Object& object) {
-  PrismHit hit;
-  return intersect_object(object, *ctx.ray, 0.0, ctx.tmax, hit) && hit.t < ctx.tmax;
 }
 
 }  // namespace
@@ -169,8 +164,9 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
 void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   QueryContext& ctx = context_of(args->context);
   const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
-  if (ctx.blocked || !blocks(ctx, group.objects[group.ids[args->primID]])) return;
-  ctx.blocked = true;
+  const int32_t id = group.ids[args->primID];
+  if (ctx.blocker != kMissId || !blocks(group.objects[id], *ctx.ray, ctx.tmax)) return;
+  ctx.blocker = id;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != 0) RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
   }
@@ -317,25 +313,26 @@ Hit EmbreeQuery::closest(const Ray& ray, double tmin) const {
   return ctx.best;
 }
 
-bool EmbreeQuery::occluded(const Ray& ray, double tmax) const {
-  if (!(tmax > 0.0)) return false;
+int32_t EmbreeQuery::occluder(const Ray& ray, double tmax) const {
+  if (!(tmax > 0.0)) return kMissId;
   QueryContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
   ctx.ray = &ray;
   ctx.tmax = tmax;
   for (int32_t id : brute_ids_) {
-    if (blocks(ctx, scene_.objects[id])) return true;
+    if (blocks(scene_.objects[id], ray, tmax)) return id;
   }
   double t0 = 0;
   double t1 = 0;
-  if (!rtc_ || !clip(ray, t0, t1) || !(t1 > 0.0) || !(t0 < tmax)) return false;
+  if (!rtc_ || !clip(ray, t0, t1) || !(t1 > 0.0) || !(t0 < tmax)) return kMissId;
   ctx.shift = std::max(t0, 0.0);
   if (!shift_is_exact_enough(ray, ctx.shift)) {
-    return std::ranges::any_of(bvh_ids_, [&](int32_t id) { return blocks(ctx, scene_.objects[id]); });
+    auto it = std::ranges::find_if(bvh_ids_, [&](int32_t id) { return blocks(scene_.objects[id], ray, tmax); });
+    return it == bvh_ids_.end() ? kMissId : *it;
   }
   RTCRay float_shadow_ray = float_ray(ray, frame_, ctx.shift, std::min(tmax, t1));
   rtcOccluded1(rtc_.get(), &ctx.rtc, &float_shadow_ray);
-  return ctx.blocked;
+  return ctx.blocker;
 }
 
 }  // namespace prism::embree

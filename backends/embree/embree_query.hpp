@@ -33,7 +33,7 @@ class EmbreeQuery final : public ObjectQuery {
   ~EmbreeQuery() override;
 
   Hit closest(const Ray& ray, double tmin) const override;
-  bool occluded(const Ray& ray, double tmax) const override;
+  int32_t occluder(const Ray& ray, double tmax) const override;
 
   const Frame& frame() const { return frame_; }
   size_t bvh_object_count() const { return bvh_ids_.size(); }

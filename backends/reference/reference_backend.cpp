@@ -29,12 +29,11 @@ class BruteForceQuery : public ObjectQuery {
     return best;
   }
 
-  bool occluded(const Ray& ray, double tmax) const override {
-    for (const Object& object : scene_.objects) {
-      PrismHit hit;
-      if (intersect_object(object, ray, 0.0, std::nextafter(tmax, 0.0), hit)) return true;
+  int32_t occluder(const Ray& ray, double tmax) const override {
+    for (size_t id = 0; id < scene_.objects.size(); ++id) {
+      if (blocks(scene_.objects[id], ray, tmax)) return static_cast<int32_t>(id);
     }
-    return false;
+    return kMissId;
   }
 
  private:

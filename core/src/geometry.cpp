@@ -1,5 +1,6 @@
 #include "prism/geometry.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -9,13 +10,9 @@ namespace prism {
 
 namespace {
 
-void store(const glm::dvec3& v, double out[3]) {
-  out[0] = v.x;
-  out[1] = v.y;
-  out[2] = v.z;
-}
-
 glm::dvec3 load(const double v[3]) { return {v[0], v[1], v[2]}; }
+
+double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
 
 // The local ray again in long double, from the rotation before rounding and
 // with the direction normalised in long double (as the exact answer has it).
@@ -59,6 +56,12 @@ bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s) {
   // One ulp on the local ray moves the point by eps * (|o| + |p|); along the
   // ray that is that over the cosine between the ray and the surface.
   const glm::dvec3 n = load(s.normal), d = load(local.dir);
+  // Nearly every hit is far from the threshold: settle those with bounds
+  // (|v| <= 2 max|v_i|, and a factor 2 more for rounding) before three roots.
+  const double reach_bound = 2.0 * (max_abs(load(local.origin)) + max_abs(load(s.point)));
+  const double slope = std::abs(glm::dot(n, d)) * t;
+  if (2.0 * kInputUlps * std::numeric_limits<double>::epsilon() * reach_bound * (2.0 * max_abs(n)) <= kPolishBelow * slope)
+    return false;
   const double n_length = glm::length(n);
   if (!(n_length > 0.0) || !std::isfinite(n_length)) return false;  // undefined normal: nothing to polish against
   const double cosine = std::abs(glm::dot(n, d)) / n_length;
@@ -66,24 +69,9 @@ bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s) {
   return kInputUlps * std::numeric_limits<double>::epsilon() * reach > kPolishBelow * cosine * t;
 }
 
-PrismRay to_local(const Object& object, const Ray& ray) {
-  PrismRay local;
-  glm::dvec3 origin = ray.origin - object.center;
-  glm::dvec3 dir = ray.dir;
-  if (object.has_rotation) {
-    // R is orthonormal: its inverse is its transpose, and t is unchanged.
-    glm::dmat3 inverse = glm::transpose(object.rotation);
-    origin = inverse * origin;
-    dir = inverse * dir;
-  }
-  store(origin, local.origin);
-  store(dir, local.dir);
-  return local;
-}
-
-bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit) {
-  PrismRay local = to_local(object, ray);
-  return object.desc->intersect(object.record(), &local, tmin, tmax, &hit) != 0;
+bool blocks(const Object& object, const Ray& ray, double tmax) {
+  PrismHit hit;
+  return intersect_object(object, ray, 0.0, tmax, hit) && hit.t < tmax;
 }
 
 SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit) {

@@ -74,9 +74,16 @@ void Shader::note(uint32_t value) {
   }
 }
 
-bool Shader::shadowed(const glm::dvec3& origin, const glm::dvec3& to_light, double distance) {
+bool Shader::shadowed(size_t light, const Ray& ray, double distance) {
   ++counts_.n[kShadowRay];
-  return query_.occluded({origin, to_light}, distance);
+  // Neighbouring shadow rays toward one light are mostly blocked by the same
+  // object: trying it first skips the whole query for them. The answer is
+  // the same either way (any blocking object will do).
+  int32_t& last = last_blocker_[light];
+  if (last != kMissId && blocks(scene_.objects[size_t(last)], ray, distance)) return true;
+  const int32_t blocker = query_.occluder(ray, distance);
+  if (blocker != kMissId) last = blocker;
+  return blocker != kMissId;
 }
 
 glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
@@ -98,13 +105,15 @@ glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
     }
     double ndl = glm::dot(s.n, l);
     if (!(ndl > 0)) continue;  // a light behind the surface adds nothing and needs no shadow ray
-    bool blocked = shadowed(origin, l, distance);
+    bool blocked = shadowed(k, {origin, l}, distance);
     note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
     glm::dvec3 visibility = blocked ? scene_.shadow_ambient : glm::dvec3(1.0);
     double phong = 0.0;
     if (m.specular > 0) {
       glm::dvec3 r = -l - 2.0 * glm::dot(-l, s.n) * s.n;
-      phong = m.specular * std::pow(std::max(0.0, glm::dot(r, -dir)), m.shininess);
+      const double highlight = glm::dot(r, -dir);
+      // pow(0, shininess >= 1) is 0: only a highlight facing the viewer needs pow.
+      if (highlight > 0) phong = m.specular * std::pow(highlight, m.shininess);
     }
     sum += energy * visibility * (m.diffuse * s.color * ndl + phong);
   }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <vector>
 
 #include "prism/cpu_render.hpp"
 
@@ -29,7 +30,7 @@ struct SampleResult {
 class Shader {
  public:
   Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts)
-      : scene_(scene), query_(query), counts_(counts) {}
+      : scene_(scene), query_(query), counts_(counts), last_blocker_(scene.lights.size(), kMissId) {}
   SampleResult trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
   // Closest hit with t > tmin over objects and visible light spheres (objects win ties).
   Hit closest(const Ray& ray, double tmin) const;
@@ -39,7 +40,7 @@ class Shader {
   Surface surface_at(const Ray& ray, const Hit& hit) const;
   glm::dvec3 local_light(const Surface& s, const glm::dvec3& dir);
   glm::dvec3 shade1(const Ray& ray);
-  bool shadowed(const glm::dvec3& origin, const glm::dvec3& to_light, double distance);
+  bool shadowed(size_t light, const Ray& ray, double distance);
   void note(uint32_t value);
 
   const Scene& scene_;
@@ -47,6 +48,7 @@ class Shader {
   RayCounts& counts_;
   bool hashing_ = false;
   uint32_t hash_ = 0;
+  std::vector<int32_t> last_blocker_;  // per light: the object that blocked its last shadow ray
 };
 
 }  // namespace prism

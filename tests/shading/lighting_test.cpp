@@ -5,6 +5,9 @@
 // n = (0,0,1) and the direction back to the eye is (0,0,1).
 #include "shading_support.hpp"
 
+#include <algorithm>
+#include <vector>
+
 namespace prism::test {
 namespace {
 
@@ -86,6 +89,42 @@ TEST_P(LightingTest, ShadowAmbientScalesABlockedLightPerChannel) {
 TEST_P(LightingTest, DielectricsBlockShadowRaysToo) {
   // The same blocker made of glass: shadow rays are blocked by every object.
   EXPECT_TRUE(pixel_near(render(load(shadow_scene("glass"))), 0, 0, {0.25, 0.15, 0.05}));
+}
+
+TEST_P(LightingTest, ShadowsAlongARowChangeBlockerFromPixelToPixel) {
+  // A 16x1 image with fov 90 (tan = 1, aspect 16): pixel i's ray is
+  // (2i - 15, 0, -1) and hits the wall z = -1 at P = (2i - 15, 0, -1), n = (0,0,1).
+  // Light 1 (red) has l = (0,1,1)/sqrt2, light 2 (green) l = (0,-1,1)/sqrt2,
+  // both dot(n, l) = 1/sqrt2. P's shadow ray toward light 1 passes
+  // (x, 0.6, -0.4) (up to the 1e-4 offset), toward light 2 (x, -0.6, -0.4): a
+  // sphere of radius 0.4 centred there at an odd x blocks exactly the pixel
+  // with that x (the next is 2 away), and no camera ray (y = 0) reaches one.
+  // Pixels in one row share a tile, so consecutive shadow rays are blocked by
+  // one sphere, then another, then none: whatever a renderer remembers
+  // between rays must not leak into the answer.
+  const std::vector<int> red_blockers = {-9, -7, 3, 5, 11}, green_blockers = {-7, -5, 3, 13};
+  std::string objects = R"({"type": "plane", "point": [0, 0, -1], "normal": [0, 0, 1], "material": "wall"})";
+  auto add_spheres = [&](const std::vector<int>& xs, const char* yz) {
+    for (int x : xs)
+      objects += R"(, {"type": "sphere", "radius": 0.4, "material": "wall", "center": [)" + std::to_string(x) + yz + "]}";
+  };
+  add_spheres(red_blockers, ", 0.6, -0.4");
+  add_spheres(green_blockers, ", -0.6, -0.4");
+  Scene scene = load(R"({"prism": 1,
+    "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_y": 90},
+    "image": {"width": 16, "height": 1},
+    "materials": {"wall": {"color": [1, 1, 1]}},
+    "lights": [{"type": "directional", "direction": [0, -1, -1], "color": [1, 0, 0]},
+               {"type": "directional", "direction": [0, 1, -1], "color": [0, 1, 0]}],
+    "objects": [)" + objects + "]}");
+  const Image image = render(scene);
+  const double lit = 0.70710678118654752;  // kd * c * dot(n, l) = 1/sqrt2
+  for (int i = 0; i < 16; ++i) {
+    const int x = 2 * i - 15;
+    const bool red_blocked = std::ranges::count(red_blockers, x) > 0;
+    const bool green_blocked = std::ranges::count(green_blockers, x) > 0;
+    EXPECT_TRUE(pixel_near(image, i, 0, {red_blocked ? 0.0 : lit, green_blocked ? 0.0 : lit, 0.0})) << "x = " << x;
+  }
 }
 
 TEST_P(LightingTest, PointLightFalloffAtKnownDistance) {

@@ -17,8 +17,10 @@ class ObjectQuery {
   virtual ~ObjectQuery() = default;
   // Closest object hit with t > tmin (ties: lower object id). Light spheres excluded.
   virtual Hit closest(const Ray& ray, double tmin) const = 0;
+  // The id of an object hit with 0 < t < tmax (any one), or kMissId.
+  virtual int32_t occluder(const Ray& ray, double tmax) const = 0;
   // True when any object is hit with 0 < t < tmax.
-  virtual bool occluded(const Ray& ray, double tmax) const = 0;
+  bool occluded(const Ray& ray, double tmax) const { return occluder(ray, tmax) != kMissId; }
 };
 
 // Renders the whole image, tiles in parallel (TBB) unless `parallel` is false.

@@ -37,10 +37,27 @@ struct SurfacePoint {
 };
 
 // Ray in the object's local frame (t is preserved: rotations are orthonormal).
-PrismRay to_local(const Object& object, const Ray& ray);
+// Inline, with intersect_object: every candidate object of every ray passes here.
+inline PrismRay to_local(const Object& object, const Ray& ray) {
+  glm::dvec3 origin = ray.origin - object.center;
+  glm::dvec3 dir = ray.dir;
+  if (object.has_rotation) {
+    // R is orthonormal: its inverse is its transpose, and t is unchanged.
+    const glm::dmat3 inverse = glm::transpose(object.rotation);
+    origin = inverse * origin;
+    dir = inverse * dir;
+  }
+  return PrismRay{{origin.x, origin.y, origin.z}, {dir.x, dir.y, dir.z}};
+}
 
 // Closest hit on one object with tmin < t <= tmax.
-bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit);
+inline bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit) {
+  const PrismRay local = to_local(object, ray);
+  return object.desc->intersect(object.record(), &local, tmin, tmax, &hit) != 0;
+}
+
+// Whether one object is hit with 0 < t < tmax: the occlusion test.
+bool blocks(const Object& object, const Ray& ray, double tmax);
 
 // World-space point, outward normal and uv of a hit found by intersect_object.
 // Where one ulp of input rounding could move the hit's t by more than ~1e-11

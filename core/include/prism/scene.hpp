@@ -75,7 +75,7 @@ struct Object {
   bool bounded = false;
   Box3 world_bounds;  // valid when bounded
 
-  const void* record() const;
+  const void* record() const { return record_storage.data(); }
 };
 
 struct Camera {
