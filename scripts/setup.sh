@@ -13,6 +13,7 @@ packages=(
   xvfb xauth x11-apps glslang-tools spirv-tools chromium
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools glslang-dev
   povray
+  clang libclang-rt-14-dev
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole test suite: the CTest suite of the main build, then the unit
-# and shading tests again in an AddressSanitizer + UBSan build (build-asan/).
+# and shading tests again in an AddressSanitizer + UBSan build (build-asan/),
+# the fuzzers for a minute each (scripts/fuzz.sh, build-fuzz/).
 # Exits non-zero when anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,3 +24,15 @@ ASAN_OPTIONS=abort_on_error=1:intercept_tls_get_addr=0 UBSAN_OPTIONS=print_stack
   LSAN_OPTIONS="suppressions=$PWD/tests/support/lsan.supp:print_suppressions=0" \
   PRISM_REQUIRE_BACKENDS=reference,embree,opengl,vulkan \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" -L 'unit|shading'
+
+# A minute of libFuzzer on each of the scene loader and the ray reader
+# (build-fuzz/, clang), after replaying every input that once found a bug.
+scripts/fuzz.sh --seconds 60
+
+# ThreadSanitizer: the concurrency test only (two scenes rendered at once
+# through the core's API), with just what it loads: the core, the primitive
+# plugins and the reference and embree backends (target prism_concurrency_suite).
+cmake -S . -B build-tsan -G Ninja -DPRISM_TSAN=ON
+cmake --build build-tsan -j"$jobs" --target prism_concurrency_suite
+TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" PRISM_REQUIRE_BACKENDS=reference,embree \
+  build-tsan/bin/prism_concurrency_test

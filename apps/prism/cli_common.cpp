@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 #include <cstdio>
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_io.hpp"
 
@@ -91,6 +93,22 @@ void write_stats(const std::string& file, const BackendChoice& choice, const Sce
   }
   j["ms"] = times;
   write_text_file_atomically(file, j.dump(2) + "\n");
+}
+
+namespace {
+// Only an atomic store: all a signal handler may safely do here.
+void on_interrupt(int signal) { request_cancel(signal); }
+}  // namespace
+
+void stop_on_interrupt() {
+  struct sigaction action = {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  // SA_RESETHAND: the default action is back after the first signal, so a
+  // second Ctrl-C kills a run that does not stop quickly enough.
+  action.sa_flags = SA_RESTART | SA_RESETHAND;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 
 namespace {

@@ -56,6 +56,11 @@ class PhaseTimer {
 void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
                  std::map<std::string, double> ms);
 
+// Makes SIGINT and SIGTERM request cancellation (prism/cancel.hpp), so a
+// render or trace stops within a tile, its temporary file is removed and
+// main() exits 128 + the signal. A second signal ends the process at once.
+void stop_on_interrupt();
+
 // A progress bar on stderr, drawn only when stderr is a terminal.
 std::function<void(double)> progress_bar();
 void finish_progress_bar();

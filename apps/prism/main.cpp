@@ -2,11 +2,14 @@
 // live, check every backend against the reference (conform), measure frame
 // rates (bench), check a primitive plugin (plugin check).
 // Exit status: 0 success, 2 bad input (scene, flag, CSV line, unknown
-// backend, plugin that fails to load), 1 failure at run time.
+// backend, plugin that fails to load), 1 failure at run time, 128 + the
+// signal's number when SIGINT (130) or SIGTERM (143) stopped the run.
 #include <cstdio>
 #include <map>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 
 int main(int argc, char** argv) {
@@ -35,10 +38,14 @@ int main(int argc, char** argv) {
     app.exit(e);
     return 2;
   }
+  prism::cli::stop_on_interrupt();
   try {
     for (auto* sub : app.get_subcommands())
       if (auto it = commands.find(sub); it != commands.end()) return it->second();
     return 2;
+  } catch (const prism::Cancelled& e) {
+    std::fprintf(stderr, "prism: %s; the output files were left as they were\n", e.what());
+    return 128 + e.signal();
   } catch (const prism::InputError& e) {
     std::fprintf(stderr, "prism: error: %s\n", e.what());
     return 2;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string_view>
@@ -114,6 +115,26 @@ KernelSource generate_kernel(const PackedScene& scene, const KernelOptions& opti
   append_section(out, "backends/glsl/kernel.glsl", kKernelGlsl);
   result.text = out.str();
   return result;
+}
+
+std::string blame_compile_error(const std::string& source, const std::string& log) {
+  std::smatch match;
+  if (!std::regex_search(log, match, std::regex(R"((^|\s)\w+:(\d+)[(:])"))) return "";
+  const long error_line = std::stol(match[2].str());
+  // The section of the line: the last "// ===== title =====" marker above it.
+  const std::string marker = "// ===== ", plugin = "plugin ";
+  std::istringstream in(source);
+  std::string line, title;
+  long marker_line = 0;
+  for (long number = 1; number <= error_line && std::getline(in, line); ++number) {
+    if (line.rfind(marker, 0) != 0) continue;
+    title = line.substr(marker.size(), line.rfind(" =====") - marker.size());
+    marker_line = number;
+  }
+  if (title.rfind(plugin, 0) != 0) return "";
+  const std::string name = title.substr(plugin.size(), title.find(' ', plugin.size()) - plugin.size());
+  return "the GLSL of primitive plugin '" + name + "' (line " + std::to_string(error_line - marker_line) +
+         " of its source)";
 }
 
 uint64_t fnv1a64(const char* data, size_t size) {

@@ -30,6 +30,12 @@ struct KernelSource {
 
 KernelSource generate_kernel(const PackedScene& scene, const KernelOptions& options);
 
+// Names the part of a generate_kernel() text that a compiler's first error
+// (`log`: Mesa's "0:LINE(COL)", glslang's "ERROR: kernel:LINE:") points into:
+// "the GLSL of primitive plugin 'torus' (line 12 of its source)", or "" when
+// the error is outside every plugin's section or the log has no line.
+std::string blame_compile_error(const std::string& source, const std::string& log);
+
 // Whether PRISM_KERNEL_FEATURES=all asks for every feature (the test of the
 // generator's specialisation renders the same scene both ways).
 bool all_features_forced();

@@ -71,5 +71,21 @@ TEST(KernelSource, HashIsFnv1a64) {
   EXPECT_EQ(hash_hex("a"), "af63dc4c8601ec8c");
 }
 
+// A compiler error inside a plugin's section is blamed on that plugin, with
+// the line counted in the plugin's own source; elsewhere nothing is blamed.
+TEST(KernelSource, CompileErrorsAreBlamedOnThePluginTheyAreIn) {
+  Registry registry;
+  const std::string text = generate_kernel(pack_scene(load(registry, kSpheresOnly)), {}).text;
+  const size_t marker = text.find("// ===== plugin sphere ");
+  ASSERT_NE(marker, std::string::npos);
+  const long marker_line = 1 + long(std::count(text.begin(), text.begin() + long(marker), '\n'));
+  const std::string line = std::to_string(marker_line + 3);
+  const std::string blame = "the GLSL of primitive plugin 'sphere' (line 3 of its source)";
+  EXPECT_EQ(blame_compile_error(text, "0:" + line + "(7): error: syntax error"), blame);     // Mesa
+  EXPECT_EQ(blame_compile_error(text, "ERROR: kernel:" + line + ": 'x' : syntax error"), blame);  // glslang
+  EXPECT_EQ(blame_compile_error(text, "0:3(1): error: in the header"), "");
+  EXPECT_EQ(blame_compile_error(text, "error without a line"), "");
+}
+
 }  // namespace
 }  // namespace prism::gpu

@@ -64,8 +64,9 @@ GLuint compile_and_link(const std::string& source, const std::string& key, Progr
   if (ok != GL_TRUE) {
     std::string log = shader_log(shader);
     glDeleteShader(shader);
-    throw RuntimeError("the generated GLSL kernel does not compile (source saved to " +
-                       save_failed_source(source, key) + ", line numbers refer to it):\n" + log);
+    const std::string blame = gpu::blame_compile_error(source, log);
+    throw RuntimeError("the generated GLSL kernel does not compile" + (blame.empty() ? "" : ": error in " + blame) +
+                       " (source saved to " + save_failed_source(source, key) + ", line numbers refer to it):\n" + log);
   }
   GLuint program = glCreateProgram();
   glAttachShader(program, shader);

@@ -13,9 +13,11 @@
 #include "gl_buffers.hpp"
 #include "gl_program.hpp"
 #include "gpu_dispatch.hpp"
+#include "gpu_limits.hpp"
 #include "gpu_scene.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 
 namespace prism {
@@ -89,7 +91,7 @@ class OpenGLBackend : public Backend {
     auto state = std::make_unique<GpuState>();
     state->packed = gpu::pack_scene(scene);
     const gpu::PackedScene& p = state->packed;
-    check_limits(p);
+    check_limits(p, scene.source);
     state->records = buffer_of(p.records);
     state->objects = buffer_of(p.objects);
     state->nodes = buffer_of(p.nodes);
@@ -122,6 +124,7 @@ class OpenGLBackend : public Backend {
     uint32_t counters[gpu::kRayCounterCount];
     const std::vector<gpu::Tile> tiles = gpu::tiles_of(s);
     for (size_t t = 0; t < tiles.size(); ++t) {
+      throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
       const uint32_t zero[gpu::kRayCounterCount] = {};
       output.write(0, sizeof zero, zero);
@@ -150,6 +153,7 @@ class OpenGLBackend : public Backend {
     state_->bind_scene();
     glUseProgram(program);
     for (size_t first = 0; first < rays.size(); first += kTraceRaysPerDispatch) {
+      throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const size_t n = std::min(kTraceRaysPerDispatch, rays.size() - first);
       frame.flags[1] = int32_t(n);
       gl::Buffer frame_buffer = frame_buffer_for(frame, {});
@@ -173,14 +177,13 @@ class OpenGLBackend : public Backend {
   BackendStats stats() const override { return stats_; }
 
  private:
-  void check_limits(const gpu::PackedScene& p) const {
+  // A scene too large for this driver is refused before any upload (InputError: exit status 2).
+  void check_limits(const gpu::PackedScene& p, const std::string& source) {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
-    const size_t largest = std::max({p.records.size() * sizeof(double), p.objects.size() * sizeof(gpu::GpuObject),
-                                     p.nodes.size() * sizeof(gpu::GpuNode), p.texels.size() * sizeof(glm::vec4)});
-    if (max_block > 0 && largest > size_t(max_block))
-      throw RuntimeError("the scene needs a " + std::to_string(largest) + "-byte storage buffer; this OpenGL driver allows " +
-                         std::to_string(max_block));
+    if (max_block <= 0) return;  // the query failed: the upload's own error is all there is
+    stats_.counters["max_storage_buffer_bytes"] = double(max_block);
+    gpu::check_buffer_limits(p, source, uint64_t(max_block), "this OpenGL driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE");
   }
 
   // The render or trace program, generated and built on first use.

@@ -92,9 +92,12 @@ std::vector<uint32_t> compile(const std::string& source, const std::string& key,
   CompileError error;
   std::vector<uint32_t> spirv = compile_compute_shader(source, error);
   ++stats.glslang_compile_calls;
-  if (spirv.empty())
-    throw RuntimeError("the generated GLSL kernel does not compile for Vulkan (source saved to " +
+  if (spirv.empty()) {
+    const std::string blame = gpu::blame_compile_error(source, error.log);
+    throw RuntimeError("the generated GLSL kernel does not compile for Vulkan" +
+                       (blame.empty() ? "" : ": error in " + blame) + " (source saved to " +
                        gpu::save_failed_source("vulkan", source, key) + ", line numbers refer to it):\n" + error.log);
+  }
   return spirv;
 }
 

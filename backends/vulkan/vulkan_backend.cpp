@@ -10,9 +10,11 @@
 #include <optional>
 
 #include "gpu_dispatch.hpp"
+#include "gpu_limits.hpp"
 #include "gpu_scene.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "vk_buffer.hpp"
 #include "vk_context.hpp"
@@ -60,6 +62,7 @@ class VulkanBackend : public Backend {
     stats_.info["device"] = context_->description();
     stats_.info["precision"] = "double geometry, float32 shading";
     stats_.info["validation"] = context_->validation() ? "on" : "off";
+    stats_.counters["max_storage_buffer_bytes"] = double(context_->properties().limits.maxStorageBufferRange);
     create_descriptor_pool();
   }
 
@@ -76,6 +79,9 @@ class VulkanBackend : public Backend {
     auto s = std::make_unique<DeviceScene>();
     s->packed = gpu::pack_scene(scene);
     const gpu::PackedScene& p = s->packed;
+    // A scene too large for this device is refused before any upload (InputError: exit status 2).
+    gpu::check_buffer_limits(p, scene.source, context_->properties().limits.maxStorageBufferRange,
+                             "this Vulkan device's maxStorageBufferRange");
     s->records = upload(*context_, *commands_, p.records, "object records");
     s->objects = upload(*context_, *commands_, p.objects, "objects");
     s->nodes = upload(*context_, *commands_, p.nodes, "BVH");
@@ -109,6 +115,7 @@ class VulkanBackend : public Backend {
     const auto* pixels = reinterpret_cast<const GpuPixel*>(static_cast<const char*>(readback.mapped()) + gpu::kOutputHeaderBytes);
     const std::vector<gpu::Tile> tiles = gpu::tiles_of(s);
     for (size_t t = 0; t < tiles.size(); ++t) {
+      throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
       const VkDeviceSize used = gpu::kOutputHeaderBytes + VkDeviceSize(tile.width) * tile.height * sizeof(GpuPixel);
       commands_->run("rendering", [&](VkCommandBuffer cb) {
@@ -129,6 +136,7 @@ class VulkanBackend : public Backend {
     GpuFrame frame = gpu::frame_for(scene_->packed, scene_model_->camera, RenderSettings{});
     std::vector<TraceResult> results(rays.size());
     for (size_t first = 0; first < rays.size(); first += gpu::kTraceRaysPerDispatch) {
+      throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const size_t n = std::min(gpu::kTraceRaysPerDispatch, rays.size() - first);
       frame.flags[1] = int32_t(n);
       const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(frame, {});

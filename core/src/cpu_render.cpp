@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "prism/camera.hpp"
+#include "prism/cancel.hpp"
 #include "shading.hpp"
 
 namespace prism {
@@ -20,6 +21,7 @@ struct Frame {
   const Scene& scene;
   const ObjectQuery& query;
   const RenderSettings& settings;
+  const CameraRays& camera_rays;
   Image& image;
 };
 
@@ -29,7 +31,7 @@ void render_pixel(const Frame& f, Shader& shader, int i, int j) {
   const ImageSettings& s = f.settings.image;
   glm::dvec3 sum(0.0);
   for (int k = 0; k < s.spp; ++k) {
-    Ray ray = camera_ray(f.settings.camera ? *f.settings.camera : f.scene.camera, s.width, s.height, i, j, sample_offset(k));
+    Ray ray = f.camera_rays(i, j, sample_offset(k));
     SampleResult r = shader.trace_sample(ray, s.max_depth, k == 0 && f.settings.aov_path);
     sum += r.radiance;
     if (k == 0) {
@@ -75,7 +77,8 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   image.rgb.assign(pixels * 3, 0.0f);
   if (settings.aov_id) image.id.assign(pixels, -1.0f);
   if (settings.aov_path) image.path.assign(pixels, 0.0f);
-  Frame frame{scene, query, settings, image};
+  const CameraRays camera_rays(settings.camera ? *settings.camera : scene.camera, s.width, s.height);
+  Frame frame{scene, query, settings, camera_rays, image};
   const int tiles_x = (s.width + kTileSize - 1) / kTileSize;
   const int tiles = tiles_x * ((s.height + kTileSize - 1) / kTileSize);
   std::atomic<int> done{0};
@@ -84,6 +87,7 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   auto run = [&](int begin, int end) {
     RayCounts counts;
     for (int tile = begin; tile < end; ++tile) {
+      if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
       render_tile(frame, tile, tiles_x, counts);
       int finished = ++done;
       if (settings.progress) settings.progress(double(finished) / tiles);
@@ -95,6 +99,7 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) { run(r.begin(), r.end()); });
   else
     run(0, tiles);
+  throw_if_cancelled();
   add_counts(stats, total);
   stats.ms["render"] += ms_since(start);
   return image;
@@ -107,6 +112,7 @@ std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
   RayCounts counts;
   Shader shader(scene, query, counts);
   for (size_t i = 0; i < rays.size(); ++i) {
+    if (i % 4096 == 0) throw_if_cancelled();  // a few ms of rays between checks
     Ray ray{rays[i].origin, rays[i].dir};
     Hit hit = shader.closest(ray, rays[i].tmin);
     TraceResult& r = results[i];

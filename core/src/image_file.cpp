@@ -39,11 +39,31 @@ const ImageModule& image_module() {
   return *module;
 }
 
+// OpenImageIO reads whatever it is given, and some of its format readers
+// never finish on an endless stream (its IFF reader spins on /dev/zero); a
+// FIFO would block. So only a regular file (or a link to one) is an image.
+// A missing file is left to OpenImageIO, whose message says so.
+void require_regular_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError("cannot read image '" + file.string() + "': not a regular file");
+}
+
 }  // namespace
 
-ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels) {
+ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels, int max_channels) {
+  require_regular_file(file);
   ImageFile image;
-  std::string error = image_module().read(file, max_pixels, image);
+  std::string error = image_module().read(file, max_pixels, max_channels, image);
+  if (!error.empty()) throw InputError("cannot read image '" + file.string() + "': " + error);
+  return image;
+}
+
+ImageFile read_image_header(const std::filesystem::path& file) {
+  require_regular_file(file);
+  ImageFile image;
+  std::string error = image_module().read_header(file, image);
   if (!error.empty()) throw InputError("cannot read image '" + file.string() + "': " + error);
   return image;
 }

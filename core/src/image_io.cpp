@@ -1,11 +1,16 @@
 #include "prism/image_io.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
 #include "prism/texture.hpp"
@@ -27,20 +32,27 @@ std::string lower_extension(const fs::path& file) {
 // piece by piece: GCC 12 at -O3 misreports `"." + string` as overlapping
 // memory (-Wrestrict, GCC bug 105329).
 fs::path temporary_name(const fs::path& file) {
+  // pid and a counter: two threads writing the same target (two renders,
+  // two kernel caches) must not share a temporary file.
+  static std::atomic<unsigned> serial{0};
   std::string name = ".";
   name += file.stem().string();
   name += ".tmp" + std::to_string(::getpid());
+  name += "-" + std::to_string(serial++);
   name += file.extension().string();
   return file.parent_path() / name;
 }
 
 // Runs `write` on a temporary file, then renames it over `file`; on any
-// failure the temporary is removed and `file` is untouched.
+// failure (or a cancel request) the temporary is removed and `file` is untouched.
 template <typename WriteFn>
 void write_atomically(const fs::path& file, WriteFn write) {
   const fs::path tmp = temporary_name(file);
   try {
     write(tmp);
+    // An interrupted run leaves the older file as it was, even when the
+    // request came in while this one was being written.
+    throw_if_cancelled();
     std::error_code ec;
     fs::rename(tmp, file, ec);
     if (ec) throw RuntimeError("cannot write " + file.string() + ": " + ec.message());
@@ -49,6 +61,20 @@ void write_atomically(const fs::path& file, WriteFn write) {
     fs::remove(tmp, ignored);
     throw;
   }
+}
+
+// Creates and removes the temporary file the write will use: access() alone
+// passes where the write later fails (root, read-only mounts, /proc).
+void probe_temporary(const fs::path& file) {
+  const fs::path tmp = temporary_name(file);
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int error = errno;
+    if (error == EEXIST) return;  // a stale file of that name: the folder takes files
+    throw RuntimeError(file.string() + ": cannot create a file in its folder: " + std::strerror(error));
+  }
+  ::close(fd);
+  ::unlink(tmp.c_str());
 }
 
 void write_png(const Image& image, const fs::path& path) {
@@ -96,6 +122,7 @@ void check_output_path(const fs::path& file, const std::vector<std::string>& ext
   if (::access(folder.c_str(), W_OK) != 0)
     throw RuntimeError(file.string() + ": folder " + folder.string() + " is not writable");
   if (fs::is_directory(file, ec)) throw RuntimeError(file.string() + ": is a folder");
+  probe_temporary(file);
 }
 
 void write_image(const Image& image, const fs::path& file) {

@@ -10,7 +10,10 @@ namespace prism {
 
 struct ImageModule {
   // Return an empty string on success, else the reason.
-  std::string (*read)(const std::filesystem::path& file, size_t max_pixels, ImageFile& out);
+  // Reads the first `max_channels` channels at most.
+  std::string (*read)(const std::filesystem::path& file, size_t max_pixels, int max_channels, ImageFile& out);
+  // The size, channels and format from the file's header; no pixels.
+  std::string (*read_header)(const std::filesystem::path& file, ImageFile& out);
   std::string (*write)(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
   // ImageBufAlgo::compare of two images of the same size and channel count.
   ImageComparison (*compare)(const ImageFile& a, const ImageFile& b, float threshold);

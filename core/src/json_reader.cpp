@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "prism/errors.hpp"
+#include "prism/limits.hpp"
 
 namespace prism::json {
 
@@ -46,6 +47,7 @@ class StrictBuilder {
   bool string(Json::string_t& v) { return value(dom_.string(v)); }
   bool binary(Json::binary_t& v) { return value(dom_.binary(v)); }
   bool start_object(std::size_t n) {
+    check_depth();
     frames_.push_back({false, {}, {}, 0});
     return dom_.start_object(n);
   }
@@ -57,6 +59,7 @@ class StrictBuilder {
   }
   bool end_object() { return end(dom_.end_object()); }
   bool start_array(std::size_t n) {
+    check_depth();
     frames_.push_back({true, {}, {}, 0});
     return dom_.start_array(n);
   }
@@ -77,6 +80,13 @@ class StrictBuilder {
     std::string path;
     for (const Frame& f : frames_) path = f.array ? index_path(path, f.count) : child_path(path, f.key);
     return path;
+  }
+  // nlohmann's parser does not recurse, but copying or dumping a value does,
+  // and each level costs a frame here: refuse nesting no valid scene needs.
+  void check_depth() const {
+    if (frames_.size() >= limits::kMaxJsonDepth)
+      fail(current_path(), "arrays and objects nested more than " + std::to_string(limits::kMaxJsonDepth) +
+                               " levels deep (the limit)");
   }
   bool value(bool ok) {
     if (!frames_.empty() && frames_.back().array) ++frames_.back().count;

@@ -3,6 +3,9 @@
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <memory>
+
 #include "image_module.hpp"
 
 namespace prism {
@@ -27,26 +30,53 @@ OIIO::TypeDesc type_of(PixelFormat format) {
   }
 }
 
-std::string read(const std::filesystem::path& file, size_t max_pixels, ImageFile& out) {
+// Opens `file` and reads its header; `error` says why when it returns null.
+std::unique_ptr<OIIO::ImageInput> open_input(const std::filesystem::path& file, std::string& error) {
   OIIO::ImageSpec config;
   config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as the scene format wants
   auto input = OIIO::ImageInput::open(file.string(), &config);
   if (!input) {
-    std::string why = OIIO::geterror();
-    return why.empty() ? "not a readable image" : why;
+    error = OIIO::geterror();
+    if (error.empty()) error = "not a readable image";
+    return nullptr;
   }
   const OIIO::ImageSpec& spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) return "the image has no pixels";
-  if (size_t(spec.width) * size_t(spec.height) > max_pixels)
-    return "the image has " + std::to_string(size_t(spec.width) * size_t(spec.height)) + " pixels, more than the limit of " +
-           std::to_string(max_pixels);
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) {
+    error = "the image has no pixels";
+    return nullptr;
+  }
+  return input;
+}
+
+void copy_header(const OIIO::ImageSpec& spec, ImageFile& out) {
   out.width = spec.width;
   out.height = spec.height;
   out.channels = spec.nchannels;
   out.channel_names = spec.channelnames;
   out.format = format_of(spec.format);
-  out.pixels.resize(size_t(spec.width) * spec.height * spec.nchannels);
-  if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, out.pixels.data()))
+}
+
+std::string read_header(const std::filesystem::path& file, ImageFile& out) {
+  std::string error;
+  auto input = open_input(file, error);
+  if (!input) return error;
+  copy_header(input->spec(), out);
+  return "";
+}
+
+std::string read(const std::filesystem::path& file, size_t max_pixels, int max_channels, ImageFile& out) {
+  std::string error;
+  auto input = open_input(file, error);
+  if (!input) return error;
+  const OIIO::ImageSpec& spec = input->spec();
+  if (size_t(spec.width) * size_t(spec.height) > max_pixels)
+    return "the image has " + std::to_string(size_t(spec.width) * size_t(spec.height)) + " pixels, more than the limit of " +
+           std::to_string(max_pixels);
+  copy_header(spec, out);
+  out.channels = std::min(spec.nchannels, max_channels);
+  if (out.channel_names.size() > size_t(out.channels)) out.channel_names.resize(size_t(out.channels));
+  out.pixels.resize(size_t(spec.width) * spec.height * size_t(out.channels));
+  if (!input->read_image(0, 0, 0, out.channels, OIIO::TypeDesc::FLOAT, out.pixels.data()))
     return "cannot decode: " + input->geterror();
   return "";
 }
@@ -90,7 +120,7 @@ ImageComparison compare(const ImageFile& a, const ImageFile& b, float threshold)
   return c;
 }
 
-const ImageModule module = {read, write, compare};
+const ImageModule module = {read, read_header, write, compare};
 
 }  // namespace
 }  // namespace prism

@@ -4,9 +4,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <cstring>
 #include <set>
+#include <string_view>
 
 #include "prism/errors.hpp"
 
@@ -31,6 +33,69 @@ std::string join(const std::vector<std::string>& items) {
   std::string out;
   for (const auto& s : items) out += (out.empty() ? "" : ", ") + s;
   return out.empty() ? "none" : out;
+}
+
+// Calls a plugin's entry function. It is C by contract, but a C++ plugin may
+// still throw through it: that is caught here, at the boundary, and becomes
+// the plugin's load error like any other fault.
+template <typename Desc>
+const Desc* call_entry(const Desc* (*entry)(), std::string& error) {
+  try {
+    const Desc* desc = entry();
+    if (!desc) error = "entry function returned no descriptor";
+    return desc;
+  } catch (const std::exception& e) {
+    error = std::string("entry function threw: ") + e.what();
+  } catch (...) {
+    error = "entry function threw an exception that is not a std::exception";
+  }
+  return nullptr;
+}
+
+// Limits on a descriptor's sizes: far above any real plugin, low enough
+// that a garbage value is caught before the core allocates or reads by it.
+constexpr uint32_t kMaxDescSize = 1u << 16;
+constexpr uint32_t kMaxFields = 256;
+constexpr uint32_t kMaxFieldCount = 64;  // entries of one array field
+constexpr uint32_t kMaxRecordSize = 1u << 16;
+constexpr size_t kMaxNameLength = 64;
+
+// A name the core prints, uses in file names and GLSL section titles.
+bool plausible_name(const char* name) {
+  if (!name || !*name) return false;
+  size_t n = 0;
+  for (; name[n] && n <= kMaxNameLength; ++n)
+    if (!std::isalnum(static_cast<unsigned char>(name[n])) && name[n] != '_' && name[n] != '-') return false;
+  return n <= kMaxNameLength;
+}
+
+std::string field_problem(const PrismField& f, uint32_t index) {
+  const std::string where = "field " + std::to_string(index);
+  if (!f.name || !*f.name) return where + " has no name";
+  if (f.kind > PRISM_FIELD_ARRAY_OR_NULL) return where + " ('" + f.name + "') has unknown kind " + std::to_string(f.kind);
+  if (f.count == 0 || f.count > kMaxFieldCount || (f.kind == PRISM_FIELD_NUMBER && f.count != 1))
+    return where + " ('" + f.name + "') has count " + std::to_string(f.count);
+  if (!(f.flags & PRISM_FIELD_REQUIRED) && !f.defaults) return where + " ('" + f.name + "') is optional without defaults";
+  if (!(f.min <= f.max)) return where + " ('" + f.name + "') has min > max";
+  return "";
+}
+
+// Why a primitive descriptor of the right ABI version cannot be used ("" if it can).
+std::string primitive_desc_problem(const PrismPrimitiveDesc& d) {
+  if (d.desc_size < sizeof(PrismPrimitiveDesc) || d.desc_size > kMaxDescSize)
+    return "desc_size " + std::to_string(d.desc_size) + " (expected " + std::to_string(sizeof(PrismPrimitiveDesc)) + ")";
+  if (!plausible_name(d.type_name)) return "type_name is missing or not a name";
+  if (!d.plugin_version) return "plugin_version is missing";
+  if (!d.intersect || !d.surface || !d.pack || !d.bounds) return "missing functions (intersect, surface, pack, bounds)";
+  if (d.record_size % 16 != 0 || d.record_size > kMaxRecordSize)
+    return "record_size " + std::to_string(d.record_size) + " (a multiple of 16, at most " +
+           std::to_string(kMaxRecordSize) + ")";
+  if (d.field_count > kMaxFields || (d.field_count > 0 && !d.fields))
+    return "field table of " + std::to_string(d.field_count) + " fields" + (d.fields ? "" : " is missing");
+  for (uint32_t i = 0; i < d.field_count; ++i)
+    if (std::string problem = field_problem(d.fields[i], i); !problem.empty()) return problem;
+  if (d.glsl_source && !plausible_name(d.glsl_prefix)) return "glsl_source without a glsl_prefix";
+  return "";
 }
 
 std::string join_paths(const std::vector<fs::path>& paths) {
@@ -65,19 +130,15 @@ std::shared_ptr<const PrimitivePlugin> load_primitive_plugin(const fs::path& pat
     error = std::string("no entry symbol ") + PRISM_PRIMITIVE_ENTRY_SYMBOL;
     return nullptr;
   }
-  const PrismPrimitiveDesc* desc = entry();
-  if (!desc) {
-    error = "entry function returned no descriptor";
-    return nullptr;
-  }
+  const PrismPrimitiveDesc* desc = call_entry(entry, error);
+  if (!desc) return nullptr;
   if (desc->abi_version != PRISM_PRIMITIVE_ABI_VERSION) {
     error = "ABI version " + std::to_string(desc->abi_version) + ", this build of Prism needs " +
             std::to_string(PRISM_PRIMITIVE_ABI_VERSION);
     return nullptr;
   }
-  if (desc->desc_size < sizeof(PrismPrimitiveDesc) || !desc->type_name || !desc->intersect || !desc->surface ||
-      !desc->pack || !desc->bounds || (desc->field_count > 0 && !desc->fields) || desc->record_size % 16 != 0) {
-    error = "descriptor is incomplete (missing functions, fields or a record size that is not a multiple of 16)";
+  if (std::string problem = primitive_desc_problem(*desc); !problem.empty()) {
+    error = "descriptor is unusable: " + problem;
     return nullptr;
   }
   return std::make_shared<PrimitivePlugin>(std::move(library), desc);
@@ -91,18 +152,16 @@ std::shared_ptr<const BackendPlugin> load_backend_plugin(const fs::path& path, s
     error = std::string("no entry symbol ") + PRISM_BACKEND_ENTRY_SYMBOL;
     return nullptr;
   }
-  const PrismBackendDesc* desc = entry();
-  if (!desc) {
-    error = "entry function returned no descriptor";
-    return nullptr;
-  }
+  const PrismBackendDesc* desc = call_entry(entry, error);
+  if (!desc) return nullptr;
   if (desc->abi_version != PRISM_BACKEND_ABI_VERSION) {
     error = "ABI version " + std::to_string(desc->abi_version) + ", this build of Prism needs " +
             std::to_string(PRISM_BACKEND_ABI_VERSION);
     return nullptr;
   }
-  if (desc->desc_size < sizeof(PrismBackendDesc) || !desc->name || !desc->probe || !desc->create) {
-    error = "descriptor is incomplete";
+  if (desc->desc_size < sizeof(PrismBackendDesc) || desc->desc_size > kMaxDescSize || !plausible_name(desc->name) ||
+      !desc->probe || !desc->create) {
+    error = "descriptor is unusable: a bad desc_size, name, probe or create";
     return nullptr;
   }
   return std::make_shared<BackendPlugin>(std::move(library), desc);
@@ -115,12 +174,22 @@ PrismBackendProbe BackendPlugin::probe() const {
   } catch (const std::exception& e) {
     result.usable = 0;
     std::snprintf(result.reason, sizeof result.reason, "probe failed: %s", e.what());
+  } catch (...) {
+    result.usable = 0;
+    std::snprintf(result.reason, sizeof result.reason, "probe failed with an exception that is not a std::exception");
   }
+  result.reason[sizeof result.reason - 1] = '\0';  // a plugin may have filled all of it
   return result;
 }
 
 std::unique_ptr<Backend> BackendPlugin::create() const {
-  return std::unique_ptr<Backend>(desc_->create());
+  try {
+    return std::unique_ptr<Backend>(desc_->create());
+  } catch (const std::exception&) {
+    throw;  // the caller reports it (InputError and RuntimeError keep their meaning)
+  } catch (...) {
+    throw RuntimeError("it threw an exception that is not a std::exception");
+  }
 }
 
 std::vector<fs::path> Registry::default_search_path() {
@@ -143,6 +212,10 @@ Registry::Registry(std::vector<fs::path> search_path) : search_path_(std::move(s
 
 std::vector<fs::path> Registry::candidates(const std::string& kind, const std::string& name) const {
   std::vector<fs::path> found;
+  // A name is one part of a file name: a '/' would leave the plugin folder,
+  // and a NUL would cut the path short (the type "sphere.so\0" opened the
+  // sphere plugin). Such a name matches no plugin.
+  if (name.find_first_of(std::string_view("/\0", 2)) != std::string::npos) return found;
   for (const auto& folder : search_path_) {
     fs::path file = folder / (prefix_of(kind) + name + ".so");
     std::error_code ec;
@@ -185,6 +258,7 @@ static std::shared_ptr<const Plugin> load_first(const std::vector<fs::path>& fil
 }
 
 std::shared_ptr<const PrimitivePlugin> Registry::primitive(const std::string& type) {
+  std::lock_guard lock(mutex_);
   if (auto it = primitives_.find(type); it != primitives_.end()) return it->second;
   std::vector<std::string> failures;
   auto plugin = load_first<PrimitivePlugin>(candidates("primitive", type), load_primitive_plugin, "type", type, failures);
@@ -199,6 +273,7 @@ std::shared_ptr<const PrimitivePlugin> Registry::primitive(const std::string& ty
 }
 
 std::shared_ptr<const BackendPlugin> Registry::backend(const std::string& name) {
+  std::lock_guard lock(mutex_);
   if (auto it = backends_.find(name); it != backends_.end()) return it->second;
   std::vector<std::string> failures;
   auto plugin = load_first<BackendPlugin>(candidates("backend", name), load_backend_plugin, "backend", name, failures);

@@ -3,12 +3,17 @@
 // reported with their JSON path before anything is rendered.
 #include "prism/scene_loader.hpp"
 
+#include <algorithm>
+#include <cstdint>
 #include <fstream>
-#include <sstream>
+#include <system_error>
+#include <vector>
 
 #include "loader_parts.hpp"
 #include "prism/errors.hpp"
+#include "prism/limits.hpp"
 #include "prism/texture.hpp"
+#include "unit_vector.hpp"
 
 namespace prism {
 
@@ -16,8 +21,6 @@ using json::Json;
 using json::ObjectReader;
 
 namespace {
-
-constexpr int kMaxImageSide = 16384;
 
 Camera read_camera(const Json& value) {
   ObjectReader r(value, "camera");
@@ -34,9 +37,11 @@ Camera read_camera(const Json& value) {
     camera.up = glm::cross(camera.right, camera.forward);
   } else {
     glm::dvec3 look_at = r.required_vec3("look_at", json::kLength);
-    glm::dvec3 up = r.vec3("up", {0, 1, 0});
+    // rescaled: `up` may have any magnitude, and look_at may differ from
+    // position by as little as 5e-324; |v|^2 must neither overflow nor vanish.
+    glm::dvec3 up = rescaled(r.vec3("up", {0, 1, 0}));
     if (look_at == camera.position) json::fail(r.path_of("look_at"), "must differ from camera.position");
-    camera.forward = glm::normalize(look_at - camera.position);
+    camera.forward = glm::normalize(rescaled(look_at - camera.position));
     glm::dvec3 right = glm::cross(camera.forward, up);
     if (glm::length(right) <= 1e-12 * glm::length(up))
       json::fail(r.path_of("up"), "must not be zero or parallel to the view direction");
@@ -51,10 +56,10 @@ ImageSettings read_image(const Json* value) {
   ImageSettings image;
   if (!value) return image;
   ObjectReader r(*value, "image");
-  image.width = r.integer("width", image.width, 1, kMaxImageSide);
-  image.height = r.integer("height", image.height, 1, kMaxImageSide);
-  image.spp = r.integer("spp", image.spp, 1, 4096);
-  image.max_depth = r.integer("max_depth", image.max_depth, 1, 64);
+  image.width = r.integer("width", image.width, 1, limits::kMaxImageSide);
+  image.height = r.integer("height", image.height, 1, limits::kMaxImageSide);
+  image.spp = r.integer("spp", image.spp, 1, limits::kMaxSpp);
+  image.max_depth = r.integer("max_depth", image.max_depth, 1, limits::kMaxDepth);
   r.finish();
   return image;
 }
@@ -62,6 +67,7 @@ ImageSettings read_image(const Json* value) {
 void read_textures(const Json* value, const std::filesystem::path& base_dir, Scene& scene,
                    std::map<std::string, int>& by_name) {
   if (!value) return;
+  size_t pixels_left = limits::kMaxTexturePixels;  // shared by every texture of the scene
   if (!value->is_object()) json::fail("textures", "must be an object of name: path, got " + json::describe(*value));
   for (auto it = value->begin(); it != value->end(); ++it) {
     const std::string path = json::child_path("textures", it.key());
@@ -81,11 +87,12 @@ void read_textures(const Json* value, const std::filesystem::path& base_dir, Sce
     std::filesystem::path resolved = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
     Texture texture;
     try {
-      texture = load_texture(resolved, srgb);
+      texture = load_texture(resolved, srgb, pixels_left);
     } catch (const InputError& e) {
       json::fail(path, e.what());
     }
     texture.name = it.key();
+    pixels_left -= size_t(texture.width) * size_t(texture.height);
     by_name[it.key()] = static_cast<int>(scene.textures.size());
     scene.textures.push_back(std::move(texture));
   }
@@ -148,7 +155,7 @@ Light read_light(const Json& value, const std::string& path) {
     light.type = Light::Type::Directional;
     glm::dvec3 direction = r.required_vec3("direction");
     json::require_nonzero(direction, r.path_of("direction"));
-    light.direction = glm::normalize(direction);
+    light.direction = glm::normalize(rescaled(direction));  // any magnitude: 1e-200 and 1e300 too
   } else {
     json::fail(r.path_of("type"), "unknown light type '" + type + "' (expected point or directional)");
   }
@@ -214,6 +221,25 @@ Scene read_scene(const Json& root, const std::filesystem::path& base_dir, Regist
   return scene;
 }
 
+// Refuses a scene over the size limit. `truncated`: the text was cut one
+// byte past the limit, so its size is a lower bound.
+void check_scene_size(std::uintmax_t bytes, const std::string& source_name, bool truncated) {
+  if (bytes <= limits::kMaxSceneFileBytes) return;
+  throw InputError(source_name + ": the scene is " + (truncated ? "at least " : "") + std::to_string(bytes) +
+                   " bytes, more than the limit of " + std::to_string(limits::kMaxSceneFileBytes) + " bytes (" +
+                   std::to_string(limits::kMaxSceneFileBytes >> 20) + " MiB)");
+}
+
+std::string read_at_most(std::istream& in, std::uintmax_t limit) {
+  std::string text;
+  std::vector<char> chunk(size_t(1) << 16);
+  while (text.size() < limit && in) {
+    in.read(chunk.data(), std::streamsize(std::min<std::uintmax_t>(chunk.size(), limit - text.size())));
+    text.append(chunk.data(), size_t(in.gcount()));
+  }
+  return text;
+}
+
 }  // namespace
 
 void check_image_settings(const ImageSettings& image, const std::string& where) {
@@ -222,14 +248,15 @@ void check_image_settings(const ImageSettings& image, const std::string& where) 
       throw InputError(where + name + ": must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
                        std::to_string(v));
   };
-  check("width", image.width, 1, kMaxImageSide);
-  check("height", image.height, 1, kMaxImageSide);
-  check("spp", image.spp, 1, 4096);
-  check("max-depth", image.max_depth, 1, 64);
+  check("width", image.width, 1, limits::kMaxImageSide);
+  check("height", image.height, 1, limits::kMaxImageSide);
+  check("spp", image.spp, 1, limits::kMaxSpp);
+  check("max-depth", image.max_depth, 1, limits::kMaxDepth);
 }
 
 Scene load_scene_from_string(const std::string& text, const std::filesystem::path& base_dir, Registry& registry,
                              const std::string& source_name) {
+  check_scene_size(text.size(), source_name, false);
   Json root = json::parse_strict(text, source_name);
   Scene scene;
   try {
@@ -242,12 +269,16 @@ Scene load_scene_from_string(const std::string& text, const std::filesystem::pat
 }
 
 Scene load_scene(const std::filesystem::path& file, Registry& registry) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(file, error);
+  if (!error) check_scene_size(size, file.string(), false);  // before reading a byte
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // Pipes and devices have no size: read one byte past the limit at most.
+  const std::string text = read_at_most(in, limits::kMaxSceneFileBytes + 1);
   if (in.bad()) throw InputError(file.string() + ": cannot read scene file");
-  return load_scene_from_string(text.str(), file.parent_path(), registry, file.string());
+  check_scene_size(text.size(), file.string(), true);
+  return load_scene_from_string(text, file.parent_path(), registry, file.string());
 }
 
 }  // namespace prism

@@ -12,6 +12,7 @@ namespace {
 
 // Euclidean modulo: repeat wrap for negative coordinates too.
 int wrap(int i, int n) {
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // the common case, without a division
   int m = i % n;
   return m < 0 ? m + n : m;
 }
@@ -47,8 +48,26 @@ double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c 
 
 double linear_to_srgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
 
-Texture load_texture(const std::filesystem::path& path, bool srgb) {
-  ImageFile file = read_image_file(path);
+namespace {
+
+// Refuses a texture whose header says it is larger than what is left of the scene's pixel budget.
+void check_texture_size(const std::filesystem::path& path, size_t pixels_left) {
+  const ImageFile header = read_image_header(path);
+  const size_t pixels = size_t(header.width) * size_t(header.height);
+  if (pixels <= pixels_left) return;
+  const std::string limit = std::to_string(limits::kMaxTexturePixels) + " pixels all textures of a scene may hold";
+  const std::string left = pixels_left == limits::kMaxTexturePixels
+                               ? "the limit of " + limit
+                               : "the " + std::to_string(pixels_left) + " left of the " + limit;
+  throw InputError("'" + path.string() + "' is " + std::to_string(header.width) + "x" + std::to_string(header.height) +
+                   " = " + std::to_string(pixels) + " pixels, more than " + left);
+}
+
+}  // namespace
+
+Texture load_texture(const std::filesystem::path& path, bool srgb, size_t pixels_left) {
+  check_texture_size(path, pixels_left);
+  ImageFile file = read_image_file(path, pixels_left, 4);  // channels past RGBA are never used
   const int channels = std::min(file.channels, 4);
   // 8- and 16-bit colour is sRGB-encoded unless the scene says otherwise; float formats are linear.
   const bool integer_format = file.format == PixelFormat::UInt8 || file.format == PixelFormat::UInt16;

@@ -198,4 +198,35 @@ CapturedRun run_captured(const std::vector<std::string>& args, const std::vector
   return run;
 }
 
+namespace {
+
+// CRC-32 (ISO-HDLC, as PNG chunks use), bit by bit: the inputs are a few bytes.
+uint32_t crc32(const std::string& bytes) {
+  uint32_t crc = 0xffffffffu;
+  for (unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xedb88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+std::string big_endian(uint32_t v) {
+  return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)};
+}
+
+std::string png_chunk(const std::string& type, const std::string& data) {
+  return big_endian(uint32_t(data.size())) + type + data + big_endian(crc32(type + data));
+}
+
+}  // namespace
+
+std::string png_claiming_size(uint32_t width, uint32_t height) {
+  // 8-bit RGB, deflate, no filter method, no interlace.
+  const std::string ihdr = big_endian(width) + big_endian(height) + std::string("\x08\x02\x00\x00\x00", 5);
+  // A zlib stream of one stored byte (0: the first row's filter type), so the header is followed by image data.
+  const std::string idat("\x78\x01\x01\x01\x00\xfe\xff\x00\x00\x01\x00\x01", 12);
+  return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", ihdr) + png_chunk("IDAT", idat) +
+         png_chunk("IEND", "");
+}
+
 }  // namespace prism::test

@@ -13,6 +13,7 @@
 // backend that is not found at all fail BackendDiscovery tests.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <span>
@@ -83,6 +84,11 @@ CapturedRun run_captured(const std::vector<std::string>& args, const std::vector
 
 // A new, empty folder for this test's files (unique per process and test).
 std::filesystem::path fresh_temp_dir();
+
+// The bytes of a PNG file whose header (IHDR, with a valid checksum) says
+// `width` x `height` RGB pixels but whose image data is one byte: what a
+// reader must refuse from the header alone, before allocating any pixel.
+std::string png_claiming_size(uint32_t width, uint32_t height);
 
 // Fixture for tests run once per backend. SetUp loads and probes the backend.
 class BackendTest : public testing::TestWithParam<std::string> {

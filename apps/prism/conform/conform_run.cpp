@@ -7,6 +7,7 @@
 
 #include "cli_common.hpp"
 #include "conform/conform.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
 #include "prism/scene_loader.hpp"
@@ -201,6 +202,8 @@ class SceneRun {
       b.image = std::move(t.image);
       judge(scene, scene_result, b);
       if (truth) b.sweep = sweep(*backend, scene, *truth, options_.sweep_max_spp);
+    } catch (const Cancelled&) {
+      throw;  // an interrupt ends the whole run; it is not this backend's failure
     } catch (const std::exception& e) {
       b.status = "error";
       b.reason = e.what();

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,8 +36,14 @@ struct ImageComparison {
 ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, float threshold);
 
 // Reads every pixel as float, alpha unassociated (never premultiplied).
-// Refuses images over `max_pixels`. Throws InputError.
-ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels = size_t(1) << 28);
+// Refuses images over `max_pixels`; keeps the first `max_channels` channels
+// only (so memory is bounded however many an EXR holds). Throws InputError.
+ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels = size_t(1) << 28,
+                          int max_channels = std::numeric_limits<int>::max());
+
+// The size, channel count, channel names and format from the file's header,
+// without its pixels (`pixels` stays empty). Throws InputError.
+ImageFile read_image_header(const std::filesystem::path& file);
 
 // Writes `image` stored as `storage` (PNG: UInt8/UInt16, EXR: Half/Float),
 // in place (callers that need atomicity write to a temporary name). Throws RuntimeError.

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -79,7 +80,8 @@ class Registry {
   const std::vector<std::filesystem::path>& search_path() const { return search_path_; }
 
   // Loads (once) the primitive plugin for `type`; throws InputError naming what
-  // was found and why it failed.
+  // was found and why it failed. primitive() and backend() may be called from
+  // several threads at once (two scenes loading with one registry).
   std::shared_ptr<const PrimitivePlugin> primitive(const std::string& type);
   std::shared_ptr<const BackendPlugin> backend(const std::string& name);
 
@@ -94,6 +96,7 @@ class Registry {
   std::vector<std::filesystem::path> search_path_;
   std::map<std::string, std::shared_ptr<const PrimitivePlugin>> primitives_;
   std::map<std::string, std::shared_ptr<const BackendPlugin>> backends_;
+  std::mutex mutex_;  // guards primitives_ and backends_
 };
 
 // Loads one plugin file; nullptr with `error` set when it is not a usable plugin.

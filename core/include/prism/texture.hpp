@@ -5,13 +5,18 @@
 
 #include <glm/glm.hpp>
 
+#include "prism/limits.hpp"
 #include "prism/scene.hpp"
 
 namespace prism {
 
 // Decodes PNG/JPG/EXR to linear RGBA float (sRGB curve on 8/16-bit colour
-// unless `srgb` is false, unassociated alpha). Throws InputError.
-Texture load_texture(const std::filesystem::path& path, bool srgb);
+// unless `srgb` is false, unassociated alpha). Throws InputError, also for
+// a file of more than `pixels_left` pixels (what the scene's textures before
+// it left of limits::kMaxTexturePixels), refused from its header before any
+// pixel is allocated.
+Texture load_texture(const std::filesystem::path& path, bool srgb,
+                     size_t pixels_left = limits::kMaxTexturePixels);
 
 // Bilinear, repeat wrap; v = 0 is the top row.
 glm::dvec4 sample_texture(const Texture& texture, glm::dvec2 uv);
