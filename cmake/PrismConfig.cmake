@@ -1,8 +1,14 @@
-# The installed Prism package, for plugins built outside the tree:
+# The installed Prism package:
 #
 #   find_package(Prism REQUIRED)     # -DCMAKE_PREFIX_PATH=<install prefix>
-#   prism_add_primitive_plugin(<type> SOURCES ... [GLSL <file>])
 #
+# Programs on the library API (prism/api.hpp: Engine, LiveScene, Renderer):
+#   target_link_libraries(app PRIVATE Prism::core)  # libprism_core.so
+#   target_link_libraries(app PRIVATE Prism::view)  # + prism::ViewWindow (prism/view_window.hpp)
+# The Engine finds the installed plugins in <prefix>/lib/prism by itself.
+#
+# Primitive plugins built outside the tree:
+#   prism_add_primitive_plugin(<type> SOURCES ... [GLSL <file>])
 # builds libprism_primitive_<type>.so into ${PRISM_PLUGIN_OUTPUT_DIR}
 # (default <build>/plugins) against Prism::sdk, the header-only plugin ABI
 # (prism/primitive_abi.h, prism/sdk/*.hpp; glm). Point PRISM_PLUGIN_PATH at

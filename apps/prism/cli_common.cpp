@@ -14,49 +14,6 @@
 
 namespace prism::cli {
 
-namespace {
-
-std::string pick_auto(Registry& registry) {
-  std::string best;
-  int best_rank = -1;
-  for (const auto& name : registry.backend_names_found()) {
-    try {
-      auto plugin = registry.backend(name);
-      if (plugin->probe().usable && plugin->desc().speed_rank > best_rank) {
-        best = name;
-        best_rank = plugin->desc().speed_rank;
-      }
-    } catch (const InputError&) {
-      // a plugin that fails to load is simply not a candidate for auto
-    }
-  }
-  if (best.empty()) throw InputError("-b auto: no usable backend found (run `prism list` to see why)");
-  return best;
-}
-
-}  // namespace
-
-BackendChoice open_backend(Registry& registry, const std::string& requested) {
-  const std::string name = requested == "auto" ? pick_auto(registry) : requested;
-  auto plugin = registry.backend(name);
-  PrismBackendProbe probe = plugin->probe();
-  if (!probe.usable) throw RuntimeError("backend '" + name + "' cannot run here: " + probe.reason);
-  return {name, start_backend(*plugin, name)};
-}
-
-std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::string& name) {
-  std::unique_ptr<Backend> backend;
-  try {
-    backend = plugin.create();
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw RuntimeError("backend '" + name + "' failed to start: " + e.what());
-  }
-  if (!backend) throw RuntimeError("backend '" + name + "' failed to start");
-  return backend;
-}
-
 double PhaseTimer::lap() {
   auto now = std::chrono::steady_clock::now();
   double ms = std::chrono::duration<double, std::milli>(now - last_).count();

@@ -14,17 +14,9 @@
 
 namespace prism::cli {
 
-struct BackendChoice {
-  std::string name;
-  std::unique_ptr<Backend> backend;
-};
-
-// Loads and starts the backend named on the command line ("auto": the
-// fastest usable one). Unknown or unloadable: InputError; cannot start: RuntimeError.
-BackendChoice open_backend(Registry& registry, const std::string& name);
-
-// Creates a backend already probed usable; RuntimeError when it fails to start.
-std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::string& name);
+// The backend named on the command line, started: prism::open_backend
+// (registry.hpp) loads, probes and starts it ("auto": the fastest usable one).
+using BackendChoice = OpenedBackend;
 
 // The scene's image settings with the command line's --width, --height,
 // --spp and --max-depth applied (any Args with those optional members),

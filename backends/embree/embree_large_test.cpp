@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "embree_test_scenes.hpp"
@@ -16,23 +18,33 @@ namespace {
 
 using namespace prism::embree::testing;
 
-// 100,000 spheres on a jittered 50 x 40 x 50 grid, as bench/make_spheres writes.
-std::string sphere_field_json() {
+// Spheres on a jittered nx x ny x nz grid, 2 apart; 50 x 40 x 50 is the
+// 100,000-sphere scene bench/make_spheres writes.
+std::string sphere_field_json(int nx = 50, int ny = 40, int nz = 50) {
   Rng rng(10);
   std::string json;
-  json.reserve(100000 * 80);
-  for (int i = 0; i < 50; ++i) {
-    for (int j = 0; j < 40; ++j) {
-      for (int k = 0; k < 50; ++k) {
+  json.reserve(size_t(nx * ny * nz) * 80);
+  for (int i = 0; i < nx; ++i) {
+    for (int j = 0; j < ny; ++j) {
+      for (int k = 0; k < nz; ++k) {
         json += (json.empty() ? "" : ",");
         json += "{\"type\": \"sphere\", \"center\": " +
-                vec(2.0 * i - 49 + uniform(rng, -0.4, 0.4), 2.0 * j - 39 + uniform(rng, -0.4, 0.4),
-                    2.0 * k - 49 + uniform(rng, -0.4, 0.4)) +
+                vec(2.0 * i - (nx - 1) + uniform(rng, -0.4, 0.4), 2.0 * j - (ny - 1) + uniform(rng, -0.4, 0.4),
+                    2.0 * k - (nz - 1) + uniform(rng, -0.4, 0.4)) +
                 ", \"radius\": " + num(uniform(rng, 0.2, 0.6)) + "}";
       }
     }
   }
   return json;
+}
+
+double median(std::vector<double> v) {
+  std::ranges::sort(v);
+  return v[v.size() / 2];
+}
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 TEST(EmbreeBackend, HundredThousandSpheresBuildAndRender) {
@@ -62,6 +74,42 @@ TEST(EmbreeBackend, HundredThousandSpheresBuildAndRender) {
     ASSERT_EQ(got[i].id, want.id) << "ray " << i;
     ASSERT_EQ(got[i].t, want.t) << "ray " << i;
   }
+}
+
+// What Backend::update saves on 10,000 spheres: a full prepare against a
+// one-object update (layered, embree_update.hpp), medians of several.
+TEST(EmbreeBackend, TenThousandSpheresOneObjectUpdateAgainstAPrepare) {
+  REQUIRE_PRIMITIVE("sphere");
+  Scene scene = load(sphere_field_json(25, 16, 25));
+  ASSERT_EQ(scene.objects.size(), 10000u);
+  // Sphere 5000 at two places near its own, read as the library API reads an edit.
+  std::vector<Object> places;
+  for (double dx : {0.1, -0.1}) {
+    const glm::dvec3 c = scene.objects[5000].center + glm::dvec3(dx, 0.05, 0);
+    std::string one = "{\"type\": \"sphere\", \"center\": " + vec(c.x, c.y, c.z) + ", \"radius\": 0.3}";
+    places.push_back(load(one).objects[0]);
+  }
+  const auto embree = create_backend("embree");
+  std::vector<double> prepares;
+  for (int i = 0; i < 7; ++i) {
+    const auto start = std::chrono::steady_clock::now();
+    embree->prepare(scene);
+    prepares.push_back(ms_since(start));
+  }
+  std::vector<double> updates;
+  SceneChanges changes;
+  changes.objects = {5000};
+  for (int i = 0; i < 9; ++i) {
+    scene.objects[5000] = places[size_t(i % 2)];
+    const auto start = std::chrono::steady_clock::now();
+    embree->update(scene, changes);
+    updates.push_back(ms_since(start));
+  }
+  std::printf("[   info   ] 10,000 spheres: prepare %.3f ms, one-object update %.4f ms (medians of 7 and 9)\n",
+              median(prepares), median(updates));
+  EXPECT_EQ(embree->stats().counters.at(counter::kBvhRefits), 9.0);
+  EXPECT_EQ(embree->stats().counters.at(counter::kBvhBuilds), 7.0);
+  EXPECT_LT(median(updates), median(prepares) / 10);
 }
 
 }  // namespace

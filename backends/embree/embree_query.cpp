@@ -8,16 +8,21 @@
 // the result equals a brute-force double loop as long as Embree never skips
 // an object whose plugin hit could win. That is what the padding ensures.
 //
-// Frame. Embree coordinates are world - C, C the centre of the union box B
-// of the BVH objects; S = the largest half extent of B; M = the largest
-// |world coordinate| of B. Every object's world box is grown by
+// Frame. Embree coordinates are world - C, C the centre of a box B that
+// holds every BVH object: their union box grown on every side by
+// kFrameSlack times its largest extent, room for updates to move objects in
+// (embree_update.hpp; nothing below needs B to be tight). An object moved
+// out of B needs a new build. S = the largest half extent of B;
+// M = the largest |world coordinate| of B. Every object's world box is grown by
 //     pad = 4e-6 * S + 2^-40 * M
 // in double and rounded outward to float.
 //
-// Ray. The ray is clipped (in double) to B grown by 2 * pad: [t0, t1]. Rays
-// that miss it skip Embree. Its origin is moved along the ray to world
-// t = s = max(t0, tmin) (tmin = 0 for occlusion), e = (o - C) + s * d, so
-// e lies in the grown box: |e| <= S + 2 pad per component. Embree gets
+// Ray. The ray is clipped (in double) to O grown by 2 * pad: [t0, t1], O
+// the union of the boxes the BVH holds (O lies in B; updates grow it with
+// the boxes they move in). Rays that miss it skip Embree. Its origin is
+// moved along the ray to world t = s = max(t0, tmin) (tmin = 0 for
+// occlusion), e = (o - C) + s * d, so e lies in B grown by 2 * pad:
+// |e| <= S + 2 pad per component. Embree gets
 // e_f = fl(e), d_f = fl(d), tnear = 0 and tfar = fl_up(t_limit - s), where
 // t_limit = min(best t so far, t1); a callback that finds a better hit
 // lowers tfar to fl_up(t_best - s) (rounded up: a tie at t_best, which the
@@ -42,6 +47,12 @@
 // rare ray for which that could exceed pad / 64 (an origin some 1e8 S away)
 // to the brute-force loop instead.
 //
+// After an update, rays go through a top-level scene that holds the moved
+// objects (their boxes made in this same frame) and an instance of the main
+// tree with the identity transform (embree_update.hpp), which Embree
+// applies exactly (x * 1 + y * 0 + z * 0 + 0, the same rdir): the float ray
+// and its slab tests are the ones above on both levels.
+//
 // A few objects far larger than the rest (a ground sphere of radius 1e6
 // beside unit spheres) would make S, and every box's padding, huge; up to
 // kMaxOutliers of them are tested beside the BVH instead.
@@ -53,6 +64,7 @@
 #include <limits>
 #include <type_traits>
 
+#include "embree_update.hpp"
 #include "prism/errors.hpp"
 #include "prism/geometry.hpp"
 
@@ -115,18 +127,12 @@ void consider(QueryContext& ctx, const Object& object, int32_t id) {
 
 }  // namespace
 
-struct EmbreeQuery::TypeGroup {
-  const Object* objects = nullptr;  // scene.objects.data()
-  const Frame* frame = nullptr;
-  std::vector<int32_t> ids;  // primID -> object id, ascending
-};
-
 namespace {
 
 // The generic callbacks of every user geometry: no per-type code here, the
 // plugin behind each object does the work (style.md #6).
 void bounds_callback(const RTCBoundsFunctionArguments* args) {
-  const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
+  const auto& group = *static_cast<const EmbreeQuery::Group*>(args->geometryUserPtr);
   const Box3& box = group.objects[group.ids[args->primID]].world_bounds;
   const Frame& frame = *group.frame;
   const glm::dvec3 lo = box.lo - frame.center - frame.pad;
@@ -140,10 +146,14 @@ void bounds_callback(const RTCBoundsFunctionArguments* args) {
   out.upper_z = float_up(hi.z);
 }
 
+// Whether `group` holds `id` no more (it moved to another layer).
+bool skipped(const EmbreeQuery::Group& group, int32_t id) { return group.skip != nullptr && (*group.skip)[id] != 0; }
+
 void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   QueryContext& ctx = context_of(args->context);
-  const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
+  const auto& group = *static_cast<const EmbreeQuery::Group*>(args->geometryUserPtr);
   const int32_t id = group.ids[args->primID];
+  if (skipped(group, id)) return;
   const int32_t before = ctx.best.id;
   const double before_t = ctx.best.t;
   consider(ctx, group.objects[id], id);
@@ -163,9 +173,9 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
 
 void occluded_callback(const RTCOccludedFunctionNArguments* args) {
   QueryContext& ctx = context_of(args->context);
-  const auto& group = *static_cast<const EmbreeQuery::TypeGroup*>(args->geometryUserPtr);
+  const auto& group = *static_cast<const EmbreeQuery::Group*>(args->geometryUserPtr);
   const int32_t id = group.ids[args->primID];
-  if (ctx.blocker != kMissId || !blocks(group.objects[id], *ctx.ray, ctx.tmax)) return;
+  if (ctx.blocker != kMissId || skipped(group, id) || !blocks(group.objects[id], *ctx.ray, ctx.tmax)) return;
   ctx.blocker = id;
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != 0) RTCRayN_tfar(args->ray, args->N, i) = -std::numeric_limits<float>::infinity();
@@ -193,7 +203,7 @@ RTCRay float_ray(const Ray& ray, const Frame& frame, double shift, double t_limi
 
 }  // namespace
 
-EmbreeQuery::EmbreeQuery(const Scene& scene, Device& device) : scene_(scene) {
+EmbreeQuery::EmbreeQuery(const Scene& scene, Device& device) : scene_(scene), device_(device) {
   const auto& objects = scene.objects;
   std::vector<double> sizes;
   for (size_t i = 0; i < objects.size(); ++i) {
@@ -201,13 +211,14 @@ EmbreeQuery::EmbreeQuery(const Scene& scene, Device& device) : scene_(scene) {
     (in_bvh ? bvh_ids_ : brute_ids_).push_back(static_cast<int32_t>(i));
     if (in_bvh) sizes.push_back(half_size(objects[i].world_bounds));
   }
+  outsized_limit_ = std::numeric_limits<double>::infinity();
   if (!sizes.empty()) {
     auto middle = sizes.begin() + static_cast<std::ptrdiff_t>(sizes.size() / 2);
     std::nth_element(sizes.begin(), middle, sizes.end());
-    const double limit = kOutlierRatio * *middle;
+    outsized_limit_ = kOutlierRatio * *middle;
     std::vector<int32_t> outliers;
     for (int32_t id : bvh_ids_) {
-      if (half_size(objects[id].world_bounds) > limit) outliers.push_back(id);
+      if (half_size(objects[id].world_bounds) > outsized_limit_) outliers.push_back(id);
     }
     if (!outliers.empty() && outliers.size() <= kMaxOutliers) {
       std::erase_if(bvh_ids_, [&](int32_t id) { return std::ranges::binary_search(outliers, id); });
@@ -215,53 +226,63 @@ EmbreeQuery::EmbreeQuery(const Scene& scene, Device& device) : scene_(scene) {
       std::ranges::sort(brute_ids_);
     }
   }
-  if (!bvh_ids_.empty()) build(device);
+  kinds_.reserve(objects.size());
+  for (const Object& object : objects) kinds_.push_back(kind_of(object));
+  if (bvh_ids_.empty()) return;
+  Box3 all = empty_box();
+  for (int32_t id : bvh_ids_) all = box_union(all, objects[id].world_bounds);
+  const double slack = kFrameSlack * max_abs(all.hi - all.lo);
+  set_frame(Box3{all.lo - slack, all.hi + slack});
+  frame_.objects = all;
+  build();
 }
 
 EmbreeQuery::~EmbreeQuery() = default;
 
-void EmbreeQuery::build(Device& device) {
+EmbreeQuery::Kind EmbreeQuery::kind_of(const Object& object) const {
+  if (!object.bounded || !finite_box(object.world_bounds)) return Kind::kUnbounded;
+  return half_size(object.world_bounds) > outsized_limit_ ? Kind::kOutsized : Kind::kRegular;
+}
+
+void EmbreeQuery::set_frame(const Box3& bounds) {
+  frame_.bounds = bounds;
+  frame_.center = 0.5 * (bounds.lo + bounds.hi);
+  frame_.half = bounds.hi - frame_.center;
+  frame_.pad = kRelativePad * max_abs(frame_.half) + kAbsolutePad * std::max(max_abs(bounds.lo), max_abs(bounds.hi));
+}
+
+void EmbreeQuery::build() {
   const auto& objects = scene_.objects;
-  Box3 all{glm::dvec3(std::numeric_limits<double>::infinity()),
-           glm::dvec3(-std::numeric_limits<double>::infinity())};
+  boxes_.assign(objects.size(), Box3{});
   for (int32_t id : bvh_ids_) {
-    all.lo = glm::min(all.lo, objects[id].world_bounds.lo);
-    all.hi = glm::max(all.hi, objects[id].world_bounds.hi);
+    boxes_[id] = objects[id].world_bounds;
+    built_area_ += half_area(boxes_[id]);
   }
-  frame_.center = 0.5 * (all.lo + all.hi);
-  frame_.half = all.hi - frame_.center;
-  frame_.pad = kRelativePad * max_abs(frame_.half) + kAbsolutePad * std::max(max_abs(all.lo), max_abs(all.hi));
-
-  // One user geometry per primitive type present, in order of first use.
-  for (int32_t id : bvh_ids_) {
-    auto same_type = [&](const auto& group) { return group->objects[group->ids[0]].desc == objects[id].desc; };
-    auto it = std::ranges::find_if(groups_, same_type);
-    if (it == groups_.end()) {
-      groups_.push_back(std::make_unique<TypeGroup>(TypeGroup{objects.data(), &frame_, {}}));
-      it = groups_.end() - 1;
-    }
-    (*it)->ids.push_back(id);
-  }
-
-  rtc_.reset(rtcNewScene(device.get()));
-  device.check("scene creation");
+  now_area_ = built_area_;
+  // One user geometry: the callbacks serve any mix of primitive types.
+  main_ = Group{objects.data(), &frame_, bvh_ids_, nullptr};  // skips nothing until layers start
+  main_scene_.reset(rtcNewScene(device_.get()));
+  device_.check("scene creation");
   // HIGH built ~15% slower and rendered no faster on the 100,000-sphere scene.
-  rtcSetSceneBuildQuality(rtc_.get(), RTC_BUILD_QUALITY_MEDIUM);
-  for (auto& group : groups_) {
-    RTCGeometry geometry = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_USER);
-    device.check("geometry creation");
-    rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(group->ids.size()));
-    rtcSetGeometryUserData(geometry, group.get());
-    rtcSetGeometryBoundsFunction(geometry, &bounds_callback, nullptr);
-    rtcSetGeometryIntersectFunction(geometry, &intersect_callback);
-    rtcSetGeometryOccludedFunction(geometry, &occluded_callback);
-    rtcCommitGeometry(geometry);
-    rtcAttachGeometry(rtc_.get(), geometry);
-    rtcReleaseGeometry(geometry);  // the scene holds it now
-    device.check("geometry setup");
-  }
-  rtcCommitScene(rtc_.get());
-  device.check("BVH build");
+  rtcSetSceneBuildQuality(main_scene_.get(), RTC_BUILD_QUALITY_MEDIUM);
+  attach_objects(main_scene_.get(), main_);
+  rtcCommitScene(main_scene_.get());
+  device_.check("BVH build");
+}
+
+unsigned EmbreeQuery::attach_objects(RTCScene scene, Group& group) {
+  RTCGeometry geometry = rtcNewGeometry(device_.get(), RTC_GEOMETRY_TYPE_USER);
+  device_.check("geometry creation");
+  rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(group.ids.size()));
+  rtcSetGeometryUserData(geometry, &group);
+  rtcSetGeometryBoundsFunction(geometry, &bounds_callback, nullptr);
+  rtcSetGeometryIntersectFunction(geometry, &intersect_callback);
+  rtcSetGeometryOccludedFunction(geometry, &occluded_callback);
+  rtcCommitGeometry(geometry);
+  const unsigned id = rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);  // the scene holds it now
+  device_.check("geometry setup");
+  return id;
 }
 
 bool EmbreeQuery::clip(const Ray& ray, double& t0, double& t1) const {
@@ -270,15 +291,16 @@ bool EmbreeQuery::clip(const Ray& ray, double& t0, double& t1) const {
   // A NaN or infinite ray never reaches Embree (its float rays must be finite).
   if (!std::isfinite(max_abs(ray.origin) + max_abs(ray.dir))) return false;
   const glm::dvec3 o = ray.origin - frame_.center;
+  const glm::dvec3 lo = frame_.objects.lo - frame_.center - 2.0 * frame_.pad;
+  const glm::dvec3 hi = frame_.objects.hi - frame_.center + 2.0 * frame_.pad;
   for (int a = 0; a < 3; ++a) {
-    const double b = frame_.half[a] + 2.0 * frame_.pad;
     if (ray.dir[a] == 0.0) {
-      if (!(std::abs(o[a]) <= b)) return false;
+      if (!(lo[a] <= o[a] && o[a] <= hi[a])) return false;
       continue;
     }
     const double inv = 1.0 / ray.dir[a];
-    double near = (-b - o[a]) * inv;
-    double far = (b - o[a]) * inv;
+    double near = (lo[a] - o[a]) * inv;
+    double far = (hi[a] - o[a]) * inv;
     if (near > far) std::swap(near, far);
     t0 = std::max(t0, near);
     t1 = std::min(t1, far);
@@ -299,7 +321,7 @@ Hit EmbreeQuery::closest(const Ray& ray, double tmin) const {
   for (int32_t id : brute_ids_) consider(ctx, scene_.objects[id], id);
   double t0 = 0;
   double t1 = 0;
-  if (!rtc_ || !clip(ray, t0, t1) || !(t1 > tmin) || t0 > ctx.best.t) return ctx.best;
+  if (!main_scene_ || !clip(ray, t0, t1) || !(t1 > tmin) || t0 > ctx.best.t) return ctx.best;
   ctx.shift = std::max(t0, tmin);
   if (!shift_is_exact_enough(ray, ctx.shift)) {
     for (int32_t id : bvh_ids_) consider(ctx, scene_.objects[id], id);
@@ -309,7 +331,7 @@ Hit EmbreeQuery::closest(const Ray& ray, double tmin) const {
   rayhit.ray = float_ray(ray, frame_, ctx.shift, std::min(ctx.best.t, t1));
   rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(rtc_.get(), &ctx.rtc, &rayhit);
+  rtcIntersect1(trace_scene(), &ctx.rtc, &rayhit);
   return ctx.best;
 }
 
@@ -324,14 +346,14 @@ int32_t EmbreeQuery::occluder(const Ray& ray, double tmax) const {
   }
   double t0 = 0;
   double t1 = 0;
-  if (!rtc_ || !clip(ray, t0, t1) || !(t1 > 0.0) || !(t0 < tmax)) return kMissId;
+  if (!main_scene_ || !clip(ray, t0, t1) || !(t1 > 0.0) || !(t0 < tmax)) return kMissId;
   ctx.shift = std::max(t0, 0.0);
   if (!shift_is_exact_enough(ray, ctx.shift)) {
     auto it = std::ranges::find_if(bvh_ids_, [&](int32_t id) { return blocks(scene_.objects[id], ray, tmax); });
     return it == bvh_ids_.end() ? kMissId : *it;
   }
   RTCRay float_shadow_ray = float_ray(ray, frame_, ctx.shift, std::min(tmax, t1));
-  rtcOccluded1(rtc_.get(), &ctx.rtc, &float_shadow_ray);
+  rtcOccluded1(trace_scene(), &ctx.rtc, &float_shadow_ray);
   return ctx.blocker;
 }
 

@@ -3,10 +3,13 @@
 // may hit; every hit is computed and compared in double by the primitive
 // plugins (prism::intersect_object). Unbounded objects (planes, unclipped
 // quadrics) and a few outsized ones are tested beside the BVH, brute force.
+// Objects edited in place can be brought up to date without a build from
+// scratch (update(), embree_update.hpp).
 #pragma once
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <embree3/rtcore.h>
@@ -20,9 +23,17 @@ namespace prism::embree {
 // Embree's coordinates: world - center, every float box grown by `pad`
 // (the error bound is derived in embree_query.cpp).
 struct Frame {
-  glm::dvec3 center{0};  // C, the middle of the BVH objects' union box
-  glm::dvec3 half{0};    // half extents of that box
+  Box3 bounds;           // B: holds every BVH object (their union box, with slack)
+  glm::dvec3 center{0};  // C, the middle of B
+  glm::dvec3 half{0};    // half extents of B
   double pad = 0;
+  Box3 objects;          // in B: holds every box the BVH holds; rays are clipped to it
+};
+
+enum class UpdateResult {
+  kUpdated,     // the BVH holds the objects' new boxes
+  kUnchanged,   // no BVH object's box changed (a material, a brute-force object): nothing to do
+  kNeedsBuild,  // a new query must be built; this one was left as it was
 };
 
 class EmbreeQuery final : public ObjectQuery {
@@ -35,30 +46,78 @@ class EmbreeQuery final : public ObjectQuery {
   Hit closest(const Ray& ray, double tmin) const override;
   int32_t occluder(const Ray& ray, double tmax) const override;
 
+  // Brings the BVH up to date after the objects `changed` (ids) were edited
+  // in place in the scene, layering the moved ones over the main tree
+  // (embree_update.hpp), or says that a new build is needed: when the object
+  // count changed, when an object went in or out of the BVH (bounded or not,
+  // outsized or not) or out of the frame's box B, when the layers' cost
+  // would pass kMaxLayeredCost, or when BVH objects moved and `may_layer` is
+  // false. Throws RuntimeError on an Embree error, after which the query
+  // must not be used.
+  UpdateResult update(std::span<const uint32_t> changed, bool may_layer = true);
+
   const Frame& frame() const { return frame_; }
+  // The proxy of embree_update.hpp: 1 until an update moves objects.
+  double layered_cost() const;
+  size_t moved_count() const { return moved_ ? moved_->ids.size() : 0; }
   size_t bvh_object_count() const { return bvh_ids_.size(); }
   size_t brute_force_count() const { return brute_ids_.size(); }
-  size_t geometry_count() const { return groups_.size(); }
+  size_t geometry_count() const { return main_.ids.empty() ? 0 : 1; }
 
-  struct TypeGroup;  // the objects of one primitive type: one RTC user geometry
-
- private:
   struct SceneDeleter {
     void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
   };
-  void build(Device& device);
-  // [t0, t1]: the part of the ray inside the BVH's box grown by 2 * pad.
+  using ScenePtr = std::unique_ptr<RTCSceneTy, SceneDeleter>;
+
+  // The objects of one RTC user geometry.
+  struct Group {
+    const Object* objects = nullptr;  // scene.objects.data()
+    const Frame* frame = nullptr;
+    std::span<const int32_t> ids;                // primID -> object id
+    const std::vector<uint8_t>* skip = nullptr;  // by object id: nonzero, not here any more
+  };
+
+ private:
+  // Where an object goes; an object whose kind changes needs a new build.
+  enum class Kind : uint8_t { kUnbounded, kRegular, kOutsized };
+  Kind kind_of(const Object& object) const;
+  void build();
+  // A user geometry over `group`'s objects, attached to `scene`; its id.
+  unsigned attach_objects(RTCScene scene, Group& group);
+  // frame_ for objects inside `bounds`.
+  void set_frame(const Box3& bounds);
+  // The scene rays are traced in: the main one, or the layers above it.
+  RTCScene trace_scene() const { return moved_ ? moved_->top.get() : main_scene_.get(); }
+  // [t0, t1]: the part of the ray inside frame_.objects grown by 2 * pad.
   bool clip(const Ray& ray, double& t0, double& t1) const;
   // Whether the double arithmetic that moves the origin to world t = shift
   // stays far inside the padding (else the ray takes the brute-force path).
   bool shift_is_exact_enough(const Ray& ray, double shift) const;
 
+  // The layers an update adds (embree_update.hpp).
+  struct Moved {
+    std::vector<int32_t> ids;  // the moved objects, in the order they first moved
+    Group group;               // over `ids`
+    ScenePtr top;              // the main scene's instance and the moved objects
+    unsigned geometry_id = 0;  // the moved objects' user geometry in `top`
+  };
+  void start_layers();
+
   const Scene& scene_;
+  Device& device_;
   Frame frame_;
   std::vector<int32_t> bvh_ids_;    // ascending
   std::vector<int32_t> brute_ids_;  // ascending: unbounded objects and outliers
-  std::vector<std::unique_ptr<TypeGroup>> groups_;
-  std::unique_ptr<RTCSceneTy, SceneDeleter> rtc_;
+  double outsized_limit_ = 0;       // half sizes above this are outsized
+  std::vector<Kind> kinds_;         // by object id, when built
+  std::vector<Box3> boxes_;         // by object id: the box the BVH holds now (BVH objects)
+  std::vector<uint8_t> moved_ids_;  // by object id: 1 in the moved layer (skipped in main_); empty until layers start
+  double built_area_ = 0;           // Σ half_area(box when built), BVH objects
+  double now_area_ = 0;             // Σ half_area(box now), BVH objects
+  double moved_area_ = 0;           // Σ half_area(box now), moved objects
+  Group main_;
+  ScenePtr main_scene_;
+  std::unique_ptr<Moved> moved_;
 };
 
 }  // namespace prism::embree

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <limits>
+#include <stdexcept>
 
 namespace prism::gpu {
 
@@ -127,6 +129,42 @@ struct Builder {
   }
 };
 
+// Links every node to its parent and every box to its leaf.
+void link(Bvh& bvh) {
+  bvh.parent.assign(bvh.nodes.size(), 0);
+  bvh.leaf_of.assign(bvh.order.size(), 0);
+  for (uint32_t n = 0; n < bvh.nodes.size(); ++n) {
+    const BvhNode& node = bvh.nodes[n];
+    if (!node.leaf()) {
+      bvh.parent[node.first] = bvh.parent[node.first + 1] = n;
+      continue;
+    }
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) bvh.leaf_of[bvh.order[i]] = n;
+  }
+}
+
+bool same_box(const Box3& a, const Box3& b) { return a.lo == b.lo && a.hi == b.hi; }
+
+// Recomputes one node from its children (or its objects); true when its bounds changed.
+bool refit_node(Bvh& bvh, std::span<const Box3> boxes, uint32_t n) {
+  BvhNode& node = bvh.nodes[n];
+  Box3 bounds = empty_box();
+  if (node.leaf()) {
+    for (uint32_t i = node.first; i < node.first + node.count; ++i) grow(bounds, boxes[bvh.order[i]]);
+  } else {
+    grow(bounds, bvh.nodes[node.first].bounds);
+    grow(bounds, bvh.nodes[node.first + 1].bounds);
+  }
+  if (same_box(bounds, node.bounds)) return false;
+  node.bounds = bounds;
+  return true;
+}
+
+void check_refit_input(const Bvh& bvh, std::span<const Box3> boxes) {
+  if (boxes.size() != bvh.order.size() || bvh.parent.size() != bvh.nodes.size())
+    throw std::invalid_argument("refit_bvh: the boxes are not the ones the tree was built from");
+}
+
 }  // namespace
 
 Bvh build_bvh(std::span<const Box3> boxes) {
@@ -137,7 +175,45 @@ Bvh build_bvh(std::span<const Box3> boxes) {
   builder.bvh.nodes.reserve(2 * boxes.size());
   builder.bvh.nodes.resize(1);
   builder.build(0, 0, uint32_t(boxes.size()), 0);
+  link(builder.bvh);
+  builder.bvh.built_cost = sah_cost(builder.bvh);
   return std::move(builder.bvh);
+}
+
+double sah_cost(const Bvh& bvh) {
+  double cost = 0.0;
+  for (const BvhNode& node : bvh.nodes) cost += half_area(node.bounds) * (node.leaf() ? double(node.count) : 1.0);
+  return cost;
+}
+
+std::vector<uint32_t> refit_bvh(Bvh& bvh, std::span<const Box3> boxes, std::span<const uint32_t> moved) {
+  check_refit_input(bvh, boxes);
+  // The moved boxes' leaves and every ancestor; children have higher indices
+  // than their parent, so descending order is bottom-up.
+  std::vector<uint32_t> todo;
+  for (uint32_t box : moved) {
+    if (box >= boxes.size()) throw std::invalid_argument("refit_bvh: a moved box is out of range");
+    for (uint32_t n = bvh.leaf_of[box];; n = bvh.parent[n]) {
+      todo.push_back(n);
+      if (n == 0) break;
+    }
+  }
+  std::sort(todo.begin(), todo.end(), std::greater<>());
+  todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+  std::vector<uint32_t> changed;
+  for (uint32_t n : todo)
+    if (refit_node(bvh, boxes, n)) changed.push_back(n);
+  std::reverse(changed.begin(), changed.end());
+  return changed;
+}
+
+std::vector<uint32_t> refit_bvh(Bvh& bvh, std::span<const Box3> boxes) {
+  check_refit_input(bvh, boxes);
+  std::vector<uint32_t> changed;
+  for (size_t n = bvh.nodes.size(); n-- > 0;)
+    if (refit_node(bvh, boxes, uint32_t(n))) changed.push_back(uint32_t(n));
+  std::reverse(changed.begin(), changed.end());
+  return changed;
 }
 
 }  // namespace prism::gpu

@@ -29,12 +29,14 @@ std::pair<int, int> tile_size(const ImageSettings& image) {
   return {w, std::min(h, (image.height + 7) / 8 * 8)};
 }
 
-std::vector<Tile> tiles_of(const ImageSettings& image) {
-  const auto [tw, th] = tile_size(image);
+std::vector<Tile> tiles_of(const RenderSettings& settings) {
+  check_region(settings);
+  const auto [tw, th] = tile_size(settings.image);
+  const PixelRect r = render_rect(settings);
   std::vector<Tile> tiles;
-  for (int y0 = 0; y0 < image.height; y0 += th)
-    for (int x0 = 0; x0 < image.width; x0 += tw)
-      tiles.push_back({x0, y0, std::min(tw, image.width - x0), std::min(th, image.height - y0)});
+  for (int y0 = r.y; y0 < r.y + r.height; y0 += th)
+    for (int x0 = r.x; x0 < r.x + r.width; x0 += tw)
+      tiles.push_back({x0, y0, std::min(tw, r.x + r.width - x0), std::min(th, r.y + r.height - y0)});
   return tiles;
 }
 
@@ -46,9 +48,10 @@ std::vector<unsigned char> frame_bytes(const GpuFrame& frame, const std::vector<
 }
 
 Image blank_image(const RenderSettings& settings) {
+  const PixelRect r = render_rect(settings);
   Image image;
-  image.width = settings.image.width;
-  image.height = settings.image.height;
+  image.width = r.width;
+  image.height = r.height;
   const size_t n = size_t(image.width) * image.height;
   image.rgb.assign(n * 3, 0.0f);
   if (settings.aov_id) image.id.assign(n, -1.0f);
@@ -57,10 +60,11 @@ Image blank_image(const RenderSettings& settings) {
 }
 
 void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pixels, const Tile& tile) {
+  const PixelRect r = render_rect(settings);
   for (int j = 0; j < tile.height; ++j) {
     for (int i = 0; i < tile.width; ++i) {
       const GpuPixel& px = pixels[size_t(j) * tile.width + i];
-      const size_t p = size_t(tile.y0 + j) * image.width + (tile.x0 + i);
+      const size_t p = size_t(tile.y0 - r.y + j) * size_t(image.width) + size_t(tile.x0 - r.x + i);
       std::copy_n(px.rgb, 3, &image.rgb[p * 3]);
       if (settings.aov_id) image.id[p] = px.id;
       if (settings.aov_path) image.path[p] = px.path;

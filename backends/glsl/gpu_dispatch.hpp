@@ -37,13 +37,14 @@ struct Tile {
 // group, about 0.25 M samples each (a few ms on a GPU, well under a second
 // on a CPU driver, and few enough that 32-bit ray counters cannot overflow).
 std::pair<int, int> tile_size(const ImageSettings& image);
-// Every tile of the image in row-major order, edge tiles clipped.
-std::vector<Tile> tiles_of(const ImageSettings& image);
+// Every tile of the settings' region (or whole image) in row-major order,
+// edge tiles clipped, in image coordinates; InputError for a bad region.
+std::vector<Tile> tiles_of(const RenderSettings& settings);
 
 // The frame buffer's contents: the GpuFrame, then the sample offsets.
 std::vector<unsigned char> frame_bytes(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets);
 
-// A black image (ids -1) of the requested size and AOVs.
+// A black image (ids -1) of the requested size (the region's) and AOVs.
 Image blank_image(const RenderSettings& settings);
 // Copies a tile's pixels (row-major, `tile.width` wide) into the image.
 void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pixels, const Tile& tile);

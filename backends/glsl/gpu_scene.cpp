@@ -4,7 +4,9 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <stdexcept>
 
+#include "gpu_pack.hpp"
 #include "prism/camera.hpp"
 #include "prism/errors.hpp"
 #include "prism/registry.hpp"
@@ -67,137 +69,201 @@ bool has_transparent_texel(const Texture& texture) {
   return false;
 }
 
-struct Packer {
-  const Scene& scene;
-  PackedScene out;
-  std::vector<int32_t> texture_offset;  // per scene texture: first texel
-  std::map<const PrismPrimitiveDesc*, uint32_t> type_index;
+void texture_ref(const Scene& scene, const PackedScene& packed, int index, int32_t ref[4]) {
+  ref[0] = index < 0 ? -1 : packed.texture_offset[size_t(index)];
+  ref[1] = index < 0 ? 0 : scene.textures[size_t(index)].width;
+  ref[2] = index < 0 ? 0 : scene.textures[size_t(index)].height;
+  ref[3] = 0;
+}
 
-  void pack_textures() {
-    for (const Texture& t : scene.textures) {
-      texture_offset.push_back(int32_t(out.texels.size()));
-      out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
-    }
+void note_material_features(const Material& m, bool transparent_texture, std::set<Feature>& out) {
+  if (m.specular > 0) out.insert(Feature::Specular);
+  if (m.dielectric()) {
+    out.insert(Feature::Dielectrics);
+    if (m.absorb != glm::dvec3(0.0)) out.insert(Feature::Absorption);
+    return;  // a dielectric's own colour, texture and reflect are ignored
   }
-
-  void texture_ref(int index, int32_t ref[4]) {
-    ref[0] = index < 0 ? -1 : texture_offset[size_t(index)];
-    ref[1] = index < 0 ? 0 : scene.textures[size_t(index)].width;
-    ref[2] = index < 0 ? 0 : scene.textures[size_t(index)].height;
-    ref[3] = 0;
+  if (m.reflect > 0) out.insert(Feature::Reflection);
+  if (m.texture >= 0) {
+    out.insert(Feature::Textures);
+    if (transparent_texture) out.insert(Feature::Alpha);
   }
+}
 
-  void pack_materials() {
-    for (const Material& m : scene.materials) {
-      GpuMaterial g{};
-      store3f(m.color, g.color);
-      g.diffuse = float(m.diffuse);
-      store3f(m.absorb, g.absorb);
-      g.specular = float(m.specular);
-      g.shininess = float(m.shininess);
-      g.reflect = float(m.reflect);
-      g.ior = float(m.ior);
-      g.uv_scale[0] = float(m.uv_scale.x);
-      g.uv_scale[1] = float(m.uv_scale.y);
-      g.uv_offset[0] = float(m.uv_offset.x);
-      g.uv_offset[1] = float(m.uv_offset.y);
-      texture_ref(m.texture, g.texture);
-      out.materials.push_back(g);
-    }
-  }
+// The kernel type index of each desc the scene uses: `type_order`'s first,
+// then the rest in the order the BVH's leaves meet them.
+struct TypeTable {
+  std::vector<const PrismPrimitiveDesc*> types;
+  std::map<const PrismPrimitiveDesc*, uint32_t> index;
 
-  void note_material_features(const Material& m) {
-    if (m.specular > 0) out.features.insert(Feature::Specular);
-    if (m.dielectric()) {
-      out.features.insert(Feature::Dielectrics);
-      if (m.absorb != glm::dvec3(0.0)) out.features.insert(Feature::Absorption);
-      return;  // a dielectric's own colour, texture and reflect are ignored
-    }
-    if (m.reflect > 0) out.features.insert(Feature::Reflection);
-    if (m.texture >= 0) {
-      out.features.insert(Feature::Textures);
-      if (has_transparent_texel(scene.textures[size_t(m.texture)])) out.features.insert(Feature::Alpha);
-    }
-  }
-
-  void pack_lights() {
-    for (const Light& l : scene.lights) {
-      GpuLight g{};
-      bool directional = l.type == Light::Type::Directional;
-      store4(directional ? l.direction : l.position, l.radius, g.position);
-      store3f(l.color, g.color);
-      g.intensity = float(l.intensity);
-      g.linear = float(l.linear);
-      g.quadratic = float(l.quadratic);
-      g.directional = directional ? 1u : 0u;
-      out.lights.push_back(g);
-      out.features.insert(directional ? Feature::DirectionalLights : Feature::PointLights);
-      if (l.visible_sphere()) out.features.insert(Feature::LightSpheres);
-    }
-  }
-
-  uint32_t type_of(const Object& object, size_t id) {
-    auto [it, added] = type_index.try_emplace(object.desc, uint32_t(out.types.size()));
+  uint32_t of(const Object& object, size_t id) {
+    auto [it, added] = index.try_emplace(object.desc, uint32_t(types.size()));
     if (added) {
       if (!object.desc->glsl_source || !object.desc->glsl_prefix)
         throw RuntimeError("objects[" + std::to_string(id) + "]: the " + object.desc->type_name +
                            " plugin has no GLSL intersector, so GPU backends cannot render it");
-      out.types.push_back(object.desc);
+      types.push_back(object.desc);
     }
     return it->second;
   }
-
-  GpuObject pack_object(size_t id) {
-    const Object& object = scene.objects[id];
-    GpuObject g{};
-    store4(object.center, 0.0, g.center);
-    for (int c = 0; c < 3; ++c) store4(object.rotation[c], 0.0, g.columns[c]);
-    g.rotated = object.has_rotation ? 1u : 0u;
-    g.type = type_of(object, id);
-    g.material = uint32_t(object.material);
-    g.id = int32_t(id);
-    g.record = uint32_t(out.records.size());
-    const auto* record = static_cast<const double*>(object.record());
-    out.records.insert(out.records.end(), record, record + object.desc->record_size / sizeof(double));
-    note_material_features(scene.materials[size_t(object.material)]);
-    return g;
-  }
-
-  void pack_objects() {
-    std::vector<Box3> boxes;
-    std::vector<size_t> bounded, unbounded;
-    for (size_t id = 0; id < scene.objects.size(); ++id) {
-      (scene.objects[id].bounded ? bounded : unbounded).push_back(id);
-      if (scene.objects[id].bounded) boxes.push_back(scene.objects[id].world_bounds);
-    }
-    Bvh bvh = build_bvh(boxes);
-    for (uint32_t i : bvh.order) out.objects.push_back(pack_object(bounded[i]));
-    for (size_t id : unbounded) out.objects.push_back(pack_object(id));
-    for (const BvhNode& n : bvh.nodes) {
-      GpuNode g{};
-      for (int a = 0; a < 3; ++a) {
-        g.lo[a] = round_down(n.bounds.lo[a]);
-        g.hi[a] = round_up(n.bounds.hi[a]);
-      }
-      g.first = n.first;
-      g.count = n.count;
-      out.nodes.push_back(g);
-    }
-    out.bounded_objects = int(bounded.size());
-    out.bvh_depth = bvh.depth;
-  }
-
-  void pack_background() {
-    GpuFrame& f = out.frame;
-    store3f(scene.ambient, f.ambient);
-    store3f(scene.shadow_ambient, f.shadow_ambient);
-    store3f(scene.background.color, f.background);
-    for (int face = 0; face < 6; ++face) texture_ref(scene.background.cubemap[size_t(face)], f.cubemap[face]);
-    if (scene.background.has_cubemap()) out.features.insert(Feature::Skybox);
-  }
 };
 
+void seed_types(const Scene& scene, std::span<const PrismPrimitiveDesc* const> type_order, TypeTable& table) {
+  if (type_order.empty()) return;
+  std::set<const PrismPrimitiveDesc*> used;
+  for (const Object& o : scene.objects) used.insert(o.desc);
+  for (const PrismPrimitiveDesc* desc : type_order)
+    if (used.count(desc) && desc->glsl_source && desc->glsl_prefix && !table.index.count(desc)) {
+      table.index.emplace(desc, uint32_t(table.types.size()));
+      table.types.push_back(desc);
+    }
+}
+
 }  // namespace
+
+namespace detail {
+
+void pack_objects(const Scene& scene, std::span<const PrismPrimitiveDesc* const> type_order, PackedScene& out) {
+  out.records.clear();
+  out.objects.clear();
+  out.nodes.clear();
+  out.boxes.clear();
+  out.bounded_ids.clear();
+  TypeTable table;
+  seed_types(scene, type_order, table);
+  std::vector<uint32_t> unbounded;
+  for (size_t id = 0; id < scene.objects.size(); ++id) {
+    if (!scene.objects[id].bounded) {
+      unbounded.push_back(uint32_t(id));
+      continue;
+    }
+    out.bounded_ids.push_back(uint32_t(id));
+    out.boxes.push_back(scene.objects[id].world_bounds);
+  }
+  out.bvh = build_bvh(out.boxes);
+  std::vector<uint32_t> slots;
+  for (uint32_t i : out.bvh.order) slots.push_back(out.bounded_ids[i]);
+  slots.insert(slots.end(), unbounded.begin(), unbounded.end());
+  out.slot_of.assign(scene.objects.size(), 0);
+  for (uint32_t id : slots) {
+    const Object& object = scene.objects[id];
+    out.slot_of[id] = uint32_t(out.objects.size());
+    out.objects.push_back(detail::object_entry(object, id, table.of(object, id), uint32_t(out.records.size())));
+    const auto* record = static_cast<const double*>(object.record());
+    out.records.insert(out.records.end(), record, record + object.desc->record_size / sizeof(double));
+  }
+  for (const BvhNode& n : out.bvh.nodes) out.nodes.push_back(detail::node_entry(n));
+  out.types = std::move(table.types);
+  out.bounded_objects = int(out.bounded_ids.size());
+  out.bvh_depth = out.bvh.depth;
+}
+
+void pack_textures(const Scene& scene, PackedScene& out) {
+  out.texels.clear();
+  out.texture_offset.clear();
+  out.texture_alpha.clear();
+  for (const Texture& t : scene.textures) {
+    out.texture_offset.push_back(int32_t(out.texels.size()));
+    out.texture_alpha.push_back(has_transparent_texel(t) ? 1 : 0);
+    out.texels.insert(out.texels.end(), t.texels.begin(), t.texels.end());
+  }
+}
+
+std::vector<GpuMaterial> pack_materials(const Scene& scene, const PackedScene& packed) {
+  std::vector<GpuMaterial> out;
+  for (const Material& m : scene.materials) {
+    GpuMaterial g{};
+    store3f(m.color, g.color);
+    g.diffuse = float(m.diffuse);
+    store3f(m.absorb, g.absorb);
+    g.specular = float(m.specular);
+    g.shininess = float(m.shininess);
+    g.reflect = float(m.reflect);
+    g.ior = float(m.ior);
+    g.uv_scale[0] = float(m.uv_scale.x);
+    g.uv_scale[1] = float(m.uv_scale.y);
+    g.uv_offset[0] = float(m.uv_offset.x);
+    g.uv_offset[1] = float(m.uv_offset.y);
+    texture_ref(scene, packed, m.texture, g.texture);
+    out.push_back(g);
+  }
+  return out;
+}
+
+std::vector<GpuLight> pack_lights(const Scene& scene) {
+  std::vector<GpuLight> out;
+  for (const Light& l : scene.lights) {
+    GpuLight g{};
+    bool directional = l.type == Light::Type::Directional;
+    store4(directional ? l.direction : l.position, l.radius, g.position);
+    store3f(l.color, g.color);
+    g.intensity = float(l.intensity);
+    g.linear = float(l.linear);
+    g.quadratic = float(l.quadratic);
+    g.directional = directional ? 1u : 0u;
+    out.push_back(g);
+  }
+  return out;
+}
+
+void pack_environment(const Scene& scene, PackedScene& out) {
+  GpuFrame& f = out.frame;
+  store3f(scene.ambient, f.ambient);
+  store3f(scene.shadow_ambient, f.shadow_ambient);
+  store3f(scene.background.color, f.background);
+  for (int face = 0; face < 6; ++face) texture_ref(scene, out, scene.background.cubemap[size_t(face)], f.cubemap[face]);
+}
+
+std::set<Feature> scene_features(const Scene& scene, const PackedScene& packed) {
+  std::set<Feature> features;
+  for (const Light& l : scene.lights) {
+    features.insert(l.type == Light::Type::Directional ? Feature::DirectionalLights : Feature::PointLights);
+    if (l.visible_sphere()) features.insert(Feature::LightSpheres);
+  }
+  if (scene.background.has_cubemap()) features.insert(Feature::Skybox);
+  std::vector<bool> used(scene.materials.size(), false);
+  for (const Object& o : scene.objects) used[size_t(o.material)] = true;
+  for (size_t m = 0; m < used.size(); ++m) {
+    if (!used[m]) continue;
+    const Material& material = scene.materials[m];
+    const bool transparent = material.texture >= 0 && packed.texture_alpha[size_t(material.texture)];
+    note_material_features(material, transparent, features);
+  }
+  return features;
+}
+
+GpuObject object_entry(const Object& object, size_t id, uint32_t type, uint32_t record) {
+  GpuObject g{};
+  store4(object.center, 0.0, g.center);
+  for (int c = 0; c < 3; ++c) store4(object.rotation[c], 0.0, g.columns[c]);
+  g.rotated = object.has_rotation ? 1u : 0u;
+  g.type = type;
+  g.material = uint32_t(object.material);
+  g.id = int32_t(id);
+  g.record = record;
+  return g;
+}
+
+GpuNode node_entry(const BvhNode& n) {
+  GpuNode g{};
+  for (int a = 0; a < 3; ++a) {
+    g.lo[a] = round_down(n.bounds.lo[a]);
+    g.hi[a] = round_up(n.bounds.hi[a]);
+  }
+  g.first = n.first;
+  g.count = n.count;
+  return g;
+}
+
+void set_counts(PackedScene& out) {
+  GpuFrame& f = out.frame;
+  f.counts[0] = int32_t(out.objects.size());
+  f.counts[1] = out.bounded_objects;
+  f.counts[2] = int32_t(out.lights.size());
+  f.counts[3] = int32_t(out.nodes.size());
+}
+
+}  // namespace detail
 
 const std::vector<Feature>& all_features() {
   static const std::vector<Feature> features = [] {
@@ -216,19 +282,28 @@ size_t PackedScene::buffer_bytes() const {
   return bytes(records) + bytes(objects) + bytes(nodes) + bytes(materials) + bytes(lights) + bytes(texels);
 }
 
-PackedScene pack_scene(const Scene& scene) {
-  Packer p{scene, {}, {}, {}};
-  p.pack_textures();
-  p.pack_materials();
-  p.pack_lights();
-  p.pack_objects();
-  p.pack_background();
-  GpuFrame& f = p.out.frame;
-  f.counts[0] = int32_t(p.out.objects.size());
-  f.counts[1] = p.out.bounded_objects;
-  f.counts[2] = int32_t(p.out.lights.size());
-  f.counts[3] = int32_t(p.out.nodes.size());
-  return std::move(p.out);
+PackedScene pack_scene(const Scene& scene, std::span<const PrismPrimitiveDesc* const> type_order) {
+  PackedScene out;
+  detail::pack_textures(scene, out);
+  out.materials = detail::pack_materials(scene, out);
+  out.lights = detail::pack_lights(scene);
+  detail::pack_objects(scene, type_order, out);
+  detail::pack_environment(scene, out);
+  out.features = detail::scene_features(scene, out);
+  detail::set_counts(out);
+  return out;
+}
+
+SceneBuffer scene_buffer(const PackedScene& p, uint32_t binding) {
+  switch (binding) {
+    case kBindRecords: return {p.records.data(), p.records.size(), sizeof(double), "object records"};
+    case kBindObjects: return {p.objects.data(), p.objects.size(), sizeof(GpuObject), "objects"};
+    case kBindNodes: return {p.nodes.data(), p.nodes.size(), sizeof(GpuNode), "BVH"};
+    case kBindMaterials: return {p.materials.data(), p.materials.size(), sizeof(GpuMaterial), "materials"};
+    case kBindLights: return {p.lights.data(), p.lights.size(), sizeof(GpuLight), "lights"};
+    case kBindTexels: return {p.texels.data(), p.texels.size(), sizeof(glm::vec4), "texels"};
+    default: throw std::invalid_argument("scene_buffer: binding " + std::to_string(binding) + " holds no scene data");
+  }
 }
 
 GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const RenderSettings& settings) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,12 +47,35 @@ struct PackedScene {
   GpuFrame frame{};  // scene constants; camera and image fields filled per render
   int bounded_objects = 0;
   int bvh_depth = 0;
+
+  // What a live update (gpu_update.hpp) changes the packing with, in place.
+  Bvh bvh;                                // the host tree, double bounds; nodes[i] packs bvh.nodes[i]
+  std::vector<Box3> boxes;                // per bounded object, as the tree last saw it (the BVH's input)
+  std::vector<uint32_t> bounded_ids;      // the BVH's input index -> object id
+  std::vector<uint32_t> slot_of;          // object id -> its index in `objects`
+  std::vector<int32_t> texture_offset;    // per scene texture: its first texel
+  std::vector<uint8_t> texture_alpha;     // per scene texture: 1 when a texel is transparent
+
   // Bytes of the buffers the kernel reads (records, objects, BVH, materials, lights, texels).
   size_t buffer_bytes() const;
 };
 
 // Packs `scene`. Throws RuntimeError when an object's plugin has no GLSL.
-PackedScene pack_scene(const Scene& scene);
+// Types in `type_order` that the scene still uses keep their kernel index
+// order (a repack after an edit then generates the same kernel); others
+// follow in the order the BVH's leaves meet them.
+PackedScene pack_scene(const Scene& scene, std::span<const PrismPrimitiveDesc* const> type_order = {});
+
+// The storage buffers that hold the scene: bindings 0 .. kSceneBufferCount - 1.
+constexpr uint32_t kSceneBufferCount = kBindFrame;
+struct SceneBuffer {
+  const void* data;
+  size_t count;          // elements
+  size_t element_bytes;
+  const char* name;      // "object records", "objects", "BVH", "materials", "lights", "texels"
+  size_t bytes() const { return count * element_bytes; }
+};
+SceneBuffer scene_buffer(const PackedScene& packed, uint32_t binding);
 
 // The per-render part of the frame: camera, image size, samples, flags.
 GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const RenderSettings& settings);

@@ -1,8 +1,10 @@
 // The OpenGL backend: the scene-specialised GLSL kernel (backends/glsl) run
 // as a GL 4.5 compute shader in a headless EGL context. Work is dispatched
 // in tiles small enough that no dispatch trips a desktop driver's watchdog;
-// each tile's pixels and ray counters are read back before the next.
+// each tile's pixels and ray counters are read back before the next. A live
+// update rewrites only the changed ranges of the scene buffers in place.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +17,7 @@
 #include "gpu_dispatch.hpp"
 #include "gpu_limits.hpp"
 #include "gpu_scene.hpp"
+#include "gpu_update.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
 #include "prism/cancel.hpp"
@@ -48,21 +51,26 @@ void check_gl(const char* what) {
 // Everything that lives in the GL context; destroyed with the context current.
 struct GpuState {
   gpu::PackedScene packed;
-  gl::Buffer records, objects, nodes, materials, lights, texels;
+  std::array<gl::Buffer, gpu::kSceneBufferCount> buffers;  // by binding
   GLuint render_program = 0, trace_program = 0;
-  std::vector<std::string> features;
 
-  ~GpuState() {
+  ~GpuState() { drop_programs(); }
+  void drop_programs() {
     if (render_program) glDeleteProgram(render_program);
     if (trace_program) glDeleteProgram(trace_program);
+    render_program = trace_program = 0;
   }
   void bind_scene() const {
-    records.bind(gpu::kBindRecords);
-    objects.bind(gpu::kBindObjects);
-    nodes.bind(gpu::kBindNodes);
-    materials.bind(gpu::kBindMaterials);
-    lights.bind(gpu::kBindLights);
-    texels.bind(gpu::kBindTexels);
+    for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) buffers[b].bind(b);
+  }
+  // Sends what `writes` names of scene buffer `b`, making the buffer again when it no longer fits.
+  void write(uint32_t b, const gpu::BufferWrites& writes) {
+    const gpu::SceneBuffer source = gpu::scene_buffer(packed, b);
+    if (writes.whole && source.bytes() > buffers[b].bytes()) {
+      buffers[b] = gl::Buffer(source.data, source.bytes());
+      return;
+    }
+    for (const gpu::ByteRange& r : gpu::byte_ranges(source, writes)) buffers[b].write(r.offset, r.size, r.data);
   }
 };
 
@@ -76,6 +84,7 @@ class OpenGLBackend : public Backend {
   OpenGLBackend() : context_(std::make_unique<gl::EglContext>()) {
     stats_.info["device"] = context_->description();
     stats_.info["precision"] = "double geometry, float32 shading";
+    gpu::start_counters(stats_);
   }
 
   ~OpenGLBackend() override {
@@ -92,17 +101,40 @@ class OpenGLBackend : public Backend {
     state->packed = gpu::pack_scene(scene);
     const gpu::PackedScene& p = state->packed;
     check_limits(p, scene.source);
-    state->records = buffer_of(p.records);
-    state->objects = buffer_of(p.objects);
-    state->nodes = buffer_of(p.nodes);
-    state->materials = buffer_of(p.materials);
-    state->lights = buffer_of(p.lights);
-    state->texels = buffer_of(p.texels);
+    for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) {
+      const gpu::SceneBuffer source = gpu::scene_buffer(p, b);
+      state->buffers[b] = gl::Buffer(source.data, source.bytes());
+    }
     glFinish();
     check_gl("scene upload");
     stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+    gpu::count_prepare(stats_, p);
     state_ = std::move(state);
     stats_.ms["build"] = ms_since(start);
+  }
+
+  // Packs what changed in place and sends only that; the programs are kept
+  // unless the kernel's primitive types or features changed. A failure
+  // leaves nothing prepared (the next render asks for a prepare).
+  void update(const Scene& scene, const SceneChanges& changes) override {
+    if (!state_ || &scene != scene_) return prepare(scene);
+    gl::EglContext::Current current(*context_);
+    auto start = std::chrono::steady_clock::now();
+    try {
+      gpu::PackedScene& p = state_->packed;
+      const gpu::PackedUpdate u = gpu::update_packed_scene(p, scene, changes);
+      check_limits(p, scene.source);
+      for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) state_->write(b, u.buffers[b]);
+      if (u.kernel) state_->drop_programs();
+      glFinish();
+      check_gl("scene update");
+      stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+      gpu::count_update(stats_, u);
+    } catch (...) {
+      state_.reset();
+      throw;
+    }
+    stats_.ms["update"] = ms_since(start);
   }
 
   Image render(const RenderSettings& settings) override {
@@ -122,7 +154,7 @@ class OpenGLBackend : public Backend {
     Image image = gpu::blank_image(settings);
     std::vector<GpuPixel> pixels(size_t(tw) * th);
     uint32_t counters[gpu::kRayCounterCount];
-    const std::vector<gpu::Tile> tiles = gpu::tiles_of(s);
+    const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings);
     for (size_t t = 0; t < tiles.size(); ++t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
@@ -198,6 +230,7 @@ class OpenGLBackend : public Backend {
     warm_up(program);
     stats_.kernel_features = kernel.features;
     stats_.ms["compile"] += build.ms + ms_since(start);
+    stats_.counters[counter::kKernelBuilds] += 1;
     stats_.counters["gl_compile_shader_calls"] += build.compile_calls;
     stats_.counters["gl_link_program_calls"] += build.link_calls;
     stats_.info["program_cache"] = build.cache;

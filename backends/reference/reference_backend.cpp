@@ -42,13 +42,35 @@ class BruteForceQuery : public ObjectQuery {
 
 class ReferenceBackend : public Backend {
  public:
+  ReferenceBackend() {
+    for (const char* name : {counter::kPrepares, counter::kUpdates, counter::kObjectsUploaded, counter::kBvhBuilds,
+                             counter::kBvhRefits, counter::kKernelBuilds}) {
+      stats_.counters[name] = 0;
+    }
+  }
+
   void prepare(const Scene& scene) override {
     scene_ = &scene;
     query_ = std::make_unique<BruteForceQuery>(scene);
     stats_.info["precision"] = "double";
     stats_.counters["scene_bytes"] = double(scene.packed_object_bytes());
+    stats_.counters[counter::kPrepares] += 1;
+    stats_.counters[counter::kObjectsUploaded] += double(scene.objects.size());
     stats_.ms["build"] = 0.0;  // nothing to build: that is the point of this backend
   }
+
+  // The query reads the scene on every ray, so an edit needs nothing: the
+  // changed objects (every object when some were added or removed) count as
+  // read again.
+  void update(const Scene& scene, const SceneChanges& changes) override {
+    stats_.counters[counter::kUpdates] += 1;
+    if (scene_ != &scene) query_ = std::make_unique<BruteForceQuery>(scene);
+    scene_ = &scene;
+    stats_.counters["scene_bytes"] = double(scene.packed_object_bytes());
+    stats_.counters[counter::kObjectsUploaded] +=
+        double(changes.objects_added_or_removed ? scene.objects.size() : changes.objects.size());
+  }
+
   Image render(const RenderSettings& settings) override { return render_cpu(*scene_, *query_, settings, stats_); }
   std::vector<TraceResult> trace(std::span<const TraceQuery> rays) override {
     return trace_cpu(*scene_, *query_, rays, stats_);

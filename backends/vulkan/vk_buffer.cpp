@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <utility>
+#include <vector>
 
 #include "prism/errors.hpp"
 
@@ -170,6 +171,32 @@ Buffer upload_storage(const Context& context, Commands& commands, const void* by
             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
   });
   return device;
+}
+
+void write_storage(const Context& context, Commands& commands, std::span<const BufferWrite> writes,
+                   const std::string& what) {
+  VkDeviceSize total = 0;
+  for (const BufferWrite& w : writes) total += w.size;
+  if (total == 0) return;
+  Buffer staging(context, total, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::Staging, what);
+  std::vector<VkBufferCopy> regions;
+  VkDeviceSize at = 0;
+  for (const BufferWrite& w : writes) {
+    if (w.size == 0) continue;
+    std::memcpy(static_cast<char*>(staging.mapped()) + at, w.data, w.size);
+    regions.push_back({at, w.offset, w.size});
+    at += w.size;
+  }
+  const Api& api = context.api();
+  commands.run(what, [&](VkCommandBuffer cb) {
+    // Earlier dispatches read these buffers: the copies wait for them.
+    barrier(api, cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    size_t r = 0;
+    for (const BufferWrite& w : writes)
+      if (w.size != 0) api.vkCmdCopyBuffer(cb, staging.handle(), w.target->handle(), 1, &regions[r++]);
+    barrier(api, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_SHADER_READ_BIT);
+  });
 }
 
 }  // namespace prism::vk

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <functional>
+#include <span>
 #include <string>
 
 #include "vk_context.hpp"
@@ -68,5 +69,19 @@ void barrier(const Api& api, VkCommandBuffer commands, VkPipelineStageFlags src_
 // A device-local storage buffer holding `bytes`, filled through a staging buffer.
 Buffer upload_storage(const Context& context, Commands& commands, const void* bytes, size_t size,
                       const std::string& what);
+
+// Bytes to copy into part of a device-local storage buffer.
+struct BufferWrite {
+  const Buffer* target;
+  VkDeviceSize offset;
+  const void* data;
+  size_t size;
+};
+
+// Copies every write through one staging buffer in one submission, after
+// the kernels' earlier reads and before their later ones (a live update
+// sends only the ranges that changed). Empty writes are skipped.
+void write_storage(const Context& context, Commands& commands, std::span<const BufferWrite> writes,
+                   const std::string& what);
 
 }  // namespace prism::vk

@@ -3,7 +3,9 @@
 // the chosen Vulkan 1.2 device. Scene data and the BVH sit in device-local
 // storage buffers; the image is rendered tile by tile, each tile's pixels
 // and ray counters copied to a staging buffer and read back before the next.
+// A live update copies only the changed ranges in, through one staging buffer.
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -12,6 +14,7 @@
 #include "gpu_dispatch.hpp"
 #include "gpu_limits.hpp"
 #include "gpu_scene.hpp"
+#include "gpu_update.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
 #include "prism/cancel.hpp"
@@ -35,7 +38,8 @@ constexpr const char* kApiGlue =
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
-// A kernel's pipeline and the descriptor set that binds the buffers to it.
+// A kernel's pipeline (null until built) and the descriptor set that binds
+// the buffers to it (kept when an update drops the pipeline).
 struct Kernel {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkDescriptorSet descriptors = VK_NULL_HANDLE;
@@ -44,14 +48,9 @@ struct Kernel {
 // Everything a prepared scene holds on the device.
 struct DeviceScene {
   gpu::PackedScene packed;
-  vk::Buffer records, objects, nodes, materials, lights, texels;
-  std::optional<Kernel> render, trace;
+  std::array<vk::Buffer, gpu::kSceneBufferCount> buffers;  // by binding
+  Kernel render, trace;
 };
-
-template <class T>
-vk::Buffer upload(const vk::Context& context, vk::Commands& commands, const std::vector<T>& v, const char* what) {
-  return vk::upload_storage(context, commands, v.data(), v.size() * sizeof(T), std::string("upload of the ") + what);
-}
 
 class VulkanBackend : public Backend {
  public:
@@ -63,6 +62,7 @@ class VulkanBackend : public Backend {
     stats_.info["precision"] = "double geometry, float32 shading";
     stats_.info["validation"] = context_->validation() ? "on" : "off";
     stats_.counters["max_storage_buffer_bytes"] = double(context_->properties().limits.maxStorageBufferRange);
+    gpu::start_counters(stats_);
     create_descriptor_pool();
   }
 
@@ -79,19 +79,45 @@ class VulkanBackend : public Backend {
     auto s = std::make_unique<DeviceScene>();
     s->packed = gpu::pack_scene(scene);
     const gpu::PackedScene& p = s->packed;
-    // A scene too large for this device is refused before any upload (InputError: exit status 2).
-    gpu::check_buffer_limits(p, scene.source, context_->properties().limits.maxStorageBufferRange,
-                             "this Vulkan device's maxStorageBufferRange");
-    s->records = upload(*context_, *commands_, p.records, "object records");
-    s->objects = upload(*context_, *commands_, p.objects, "objects");
-    s->nodes = upload(*context_, *commands_, p.nodes, "BVH");
-    s->materials = upload(*context_, *commands_, p.materials, "materials");
-    s->lights = upload(*context_, *commands_, p.lights, "lights");
-    s->texels = upload(*context_, *commands_, p.texels, "texels");
+    check_limits(p, scene.source);
+    for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) s->buffers[b] = upload(gpu::scene_buffer(p, b));
     stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+    gpu::count_prepare(stats_, p);
     scene_ = std::move(s);
     stats_.ms["build"] = ms_since(start);
     check_validation("scene upload");
+  }
+
+  // Packs what changed in place and copies only that in; the pipelines are
+  // kept unless the kernel's primitive types or features changed. A failure
+  // leaves nothing prepared (the next render asks for a prepare).
+  void update(const Scene& scene, const SceneChanges& changes) override {
+    if (!scene_ || &scene != scene_model_) return prepare(scene);
+    auto start = std::chrono::steady_clock::now();
+    try {
+      gpu::PackedScene& p = scene_->packed;
+      const gpu::PackedUpdate u = gpu::update_packed_scene(p, scene, changes);
+      check_limits(p, scene.source);
+      std::vector<vk::BufferWrite> writes;
+      for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) {
+        const gpu::SceneBuffer source = gpu::scene_buffer(p, b);
+        if (u.buffers[b].whole && source.bytes() > scene_->buffers[b].size()) {
+          scene_->buffers[b] = upload(source);
+          continue;
+        }
+        for (const gpu::ByteRange& r : gpu::byte_ranges(source, u.buffers[b]))
+          writes.push_back({&scene_->buffers[b], r.offset, r.data, r.size});
+      }
+      vk::write_storage(*context_, *commands_, writes, "update of the scene");
+      if (u.kernel) drop_pipelines();
+      stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+      gpu::count_update(stats_, u);
+    } catch (...) {
+      release_scene();
+      throw;
+    }
+    stats_.ms["update"] = ms_since(start);
+    check_validation("scene update");
   }
 
   Image render(const RenderSettings& settings) override {
@@ -113,7 +139,7 @@ class VulkanBackend : public Backend {
     Image image = gpu::blank_image(settings);
     const auto* header = static_cast<const uint32_t*>(readback.mapped());
     const auto* pixels = reinterpret_cast<const GpuPixel*>(static_cast<const char*>(readback.mapped()) + gpu::kOutputHeaderBytes);
-    const std::vector<gpu::Tile> tiles = gpu::tiles_of(s);
+    const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings);
     for (size_t t = 0; t < tiles.size(); ++t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
@@ -169,10 +195,26 @@ class VulkanBackend : public Backend {
  private:
   const vk::Api& api() const { return context_->api(); }
 
+  // A scene too large for this device is refused before any upload (InputError: exit status 2).
+  void check_limits(const gpu::PackedScene& p, const std::string& source) const {
+    gpu::check_buffer_limits(p, source, context_->properties().limits.maxStorageBufferRange,
+                             "this Vulkan device's maxStorageBufferRange");
+  }
+
+  vk::Buffer upload(const gpu::SceneBuffer& source) {
+    return vk::upload_storage(*context_, *commands_, source.data, source.bytes(), std::string("upload of the ") + source.name);
+  }
+
+  // Every command waits for its fence, so no pipeline is in use here.
+  void drop_pipelines() {
+    for (Kernel* kernel : {&scene_->render, &scene_->trace}) {
+      if (kernel->pipeline && !context_->abandoned()) api().vkDestroyPipeline(context_->device(), kernel->pipeline, nullptr);
+      kernel->pipeline = VK_NULL_HANDLE;
+    }
+  }
+
   void release_scene() {
-    if (scene_ && !context_->abandoned())
-      for (const std::optional<Kernel>& kernel : {scene_->render, scene_->trace})
-        if (kernel) api().vkDestroyPipeline(context_->device(), kernel->pipeline, nullptr);
+    if (scene_) drop_pipelines();
     scene_.reset();
   }
 
@@ -195,16 +237,15 @@ class VulkanBackend : public Backend {
   // The render or trace kernel, generated, compiled and warmed up on first use.
   const Kernel& kernel_for(bool trace) {
     if (!scene_) throw RuntimeError("vulkan backend: render or trace before prepare");
-    std::optional<Kernel>& slot = trace ? scene_->trace : scene_->render;
-    if (slot) return *slot;
+    Kernel& slot = trace ? scene_->trace : scene_->render;
+    if (slot.pipeline) return slot;
     const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue));
     vk::PipelineStats build;
-    Kernel kernel;
-    kernel.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
-    kernel.descriptors = allocate_descriptors();
-    slot = kernel;
+    slot.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
+    if (!slot.descriptors) slot.descriptors = allocate_descriptors();
+    stats_.counters[counter::kKernelBuilds] += 1;
     auto start = std::chrono::steady_clock::now();
-    warm_up(*slot);
+    warm_up(slot);
     stats_.kernel_features = source.features;
     stats_.ms["compile"] += build.ms + ms_since(start);
     stats_.counters["glslang_compile_calls"] += build.glslang_compile_calls;
@@ -216,7 +257,7 @@ class VulkanBackend : public Backend {
     stats_.info["program_cache"] = build.cache;
     if (!build.cache_file.empty()) stats_.info["program_cache_file"] = build.cache_file.string();
     check_validation("kernel build");
-    return *slot;
+    return slot;
   }
 
   VkDescriptorSet allocate_descriptors() {
@@ -233,12 +274,7 @@ class VulkanBackend : public Backend {
   // Points the kernel's eight bindings at the scene, the frame and the output.
   void bind(const Kernel& kernel, const vk::Buffer& frame, const vk::Buffer& output) {
     const vk::Buffer* buffers[gpu::kBindingCount] = {};
-    buffers[gpu::kBindRecords] = &scene_->records;
-    buffers[gpu::kBindObjects] = &scene_->objects;
-    buffers[gpu::kBindNodes] = &scene_->nodes;
-    buffers[gpu::kBindMaterials] = &scene_->materials;
-    buffers[gpu::kBindLights] = &scene_->lights;
-    buffers[gpu::kBindTexels] = &scene_->texels;
+    for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) buffers[b] = &scene_->buffers[b];
     buffers[gpu::kBindFrame] = &frame;
     buffers[gpu::kBindOutput] = &output;
     VkDescriptorBufferInfo infos[gpu::kBindingCount];

@@ -22,7 +22,9 @@ struct Frame {
   const ObjectQuery& query;
   const RenderSettings& settings;
   const CameraRays& camera_rays;
-  Image& image;
+  PixelRect rect;  // the pixels rendered (the region, or the whole image)
+  Image& image;    // rect-sized
+  size_t index(int i, int j) const { return size_t(j - rect.y) * size_t(rect.width) + size_t(i - rect.x); }
 };
 
 // One pixel: the mean of its samples, summed in sample order (so the result
@@ -35,22 +37,22 @@ void render_pixel(const Frame& f, Shader& shader, int i, int j) {
     SampleResult r = shader.trace_sample(ray, s.max_depth, k == 0 && f.settings.aov_path);
     sum += r.radiance;
     if (k == 0) {
-      size_t p = size_t(j) * s.width + i;
+      size_t p = f.index(i, j);
       if (f.settings.aov_id) f.image.id[p] = static_cast<float>(r.first_id);
       if (f.settings.aov_path) f.image.path[p] = static_cast<float>(r.path_hash);
     }
   }
   glm::dvec3 mean = sum / double(s.spp);
-  float* out = &f.image.rgb[(size_t(j) * s.width + i) * 3];
+  float* out = &f.image.rgb[f.index(i, j) * 3];
   for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(mean[c]);
 }
 
 void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts) {
-  const ImageSettings& s = f.settings.image;
+  const PixelRect& r = f.rect;
   Shader shader(f.scene, f.query, counts);
-  int x0 = (tile % tiles_x) * kTileSize, y0 = (tile / tiles_x) * kTileSize;
-  for (int j = y0; j < std::min(y0 + kTileSize, s.height); ++j)
-    for (int i = x0; i < std::min(x0 + kTileSize, s.width); ++i) render_pixel(f, shader, i, j);
+  int x0 = r.x + (tile % tiles_x) * kTileSize, y0 = r.y + (tile / tiles_x) * kTileSize;
+  for (int j = y0; j < std::min(y0 + kTileSize, r.y + r.height); ++j)
+    for (int i = x0; i < std::min(x0 + kTileSize, r.x + r.width); ++i) render_pixel(f, shader, i, j);
 }
 
 void add_counts(BackendStats& stats, const RayCounts& counts) {
@@ -69,18 +71,20 @@ double ms_since(std::chrono::steady_clock::time_point start) {
 Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSettings& settings, BackendStats& stats,
                  bool parallel) {
   auto start = std::chrono::steady_clock::now();
+  check_region(settings);
   const ImageSettings& s = settings.image;
+  const PixelRect rect = render_rect(settings);
   Image image;
-  image.width = s.width;
-  image.height = s.height;
-  const size_t pixels = size_t(s.width) * s.height;
+  image.width = rect.width;
+  image.height = rect.height;
+  const size_t pixels = size_t(rect.width) * size_t(rect.height);
   image.rgb.assign(pixels * 3, 0.0f);
   if (settings.aov_id) image.id.assign(pixels, -1.0f);
   if (settings.aov_path) image.path.assign(pixels, 0.0f);
   const CameraRays camera_rays(settings.camera ? *settings.camera : scene.camera, s.width, s.height);
-  Frame frame{scene, query, settings, camera_rays, image};
-  const int tiles_x = (s.width + kTileSize - 1) / kTileSize;
-  const int tiles = tiles_x * ((s.height + kTileSize - 1) / kTileSize);
+  Frame frame{scene, query, settings, camera_rays, rect, image};
+  const int tiles_x = (rect.width + kTileSize - 1) / kTileSize;
+  const int tiles = tiles_x * ((rect.height + kTileSize - 1) / kTileSize);
   std::atomic<int> done{0};
   std::mutex counts_mutex;
   RayCounts total;

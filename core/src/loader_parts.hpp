@@ -1,6 +1,7 @@
 // Pieces of the scene loader shared between its source files.
 #pragma once
 
+#include <filesystem>
 #include <map>
 #include <string>
 
@@ -17,6 +18,24 @@ glm::dmat3 rounded(const RotationExt& rotation);
 inline glm::dmat3 read_rotation(const json::Json& value, const std::string& path) {
   return rounded(read_rotation_ext(value, path));
 }
+
+// Each part of a scene file, read from `value` with errors naming `path`
+// (the JSON path in a file, the API call in prism/api.hpp).
+Camera read_camera(const json::Json& value, const std::string& path);
+ImageSettings read_image(const json::Json& value, const std::string& path);
+// One texture: a path string or {path, srgb}, resolved against `base_dir`.
+Texture read_texture(const json::Json& value, const std::string& name, const std::string& path,
+                     const std::filesystem::path& base_dir, size_t pixels_left);
+// What the scene's textures leave of limits::kMaxTexturePixels.
+size_t texture_pixels_left(const Scene& scene);
+int texture_index(const std::map<std::string, int>& textures, const std::string& name, const std::string& path);
+Material read_material(const json::Json& value, const std::string& path, const std::map<std::string, int>& textures);
+Light read_light(const json::Json& value, const std::string& path);
+Background read_background(const json::Json& value, const std::string& path,
+                           const std::map<std::string, int>& textures, const Scene& scene);
+// The top-level `ambient` and `shadow_ambient` of the object `r` reads.
+glm::dvec3 read_ambient(json::ObjectReader& r);
+glm::dvec3 read_shadow_ambient(json::ObjectReader& r);
 
 // One entry of `objects`: its plugin's fields, frame and material.
 Object read_object(const json::Json& value, const std::string& path, Registry& registry,

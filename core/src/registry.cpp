@@ -192,6 +192,15 @@ std::unique_ptr<Backend> BackendPlugin::create() const {
   }
 }
 
+fs::path Registry::core_library_folder() {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(&Registry::core_library_folder), &info) == 0 || info.dli_fname == nullptr)
+    return {};
+  std::error_code ec;
+  fs::path file = fs::canonical(info.dli_fname, ec);
+  return ec ? fs::path() : file.parent_path();
+}
+
 std::vector<fs::path> Registry::default_search_path() {
   std::vector<fs::path> folders;
   if (const char* env = std::getenv("PRISM_PLUGIN_PATH")) {
@@ -204,7 +213,15 @@ std::vector<fs::path> Registry::default_search_path() {
       start = end + 1;
     }
   }
-  folders.push_back((executable_folder() / ".." / "lib" / "prism").lexically_normal());
+  // Beside the core library first: a program linking the installed
+  // libprism_core.so (the library API) lives anywhere.
+  std::vector<fs::path> defaults;
+  if (fs::path core = core_library_folder(); !core.empty()) defaults.push_back(core / "prism");
+  defaults.push_back(executable_folder() / ".." / "lib" / "prism");
+  for (const fs::path& folder : defaults) {
+    if (std::ranges::find(folders, folder.lexically_normal()) == folders.end())
+      folders.push_back(folder.lexically_normal());
+  }
   return folders;
 }
 
@@ -310,6 +327,45 @@ std::vector<PluginReport> Registry::scan_all() {
     }
   }
   return reports;
+}
+
+std::string pick_auto_backend(Registry& registry) {
+  std::string best;
+  int best_rank = -1;
+  for (const auto& name : registry.backend_names_found()) {
+    try {
+      auto plugin = registry.backend(name);
+      if (plugin->probe().usable && plugin->desc().speed_rank > best_rank) {
+        best = name;
+        best_rank = plugin->desc().speed_rank;
+      }
+    } catch (const InputError&) {
+      // a plugin that fails to load is simply not a candidate for auto
+    }
+  }
+  if (best.empty()) throw InputError("-b auto: no usable backend found (run `prism list` to see why)");
+  return best;
+}
+
+OpenedBackend open_backend(Registry& registry, const std::string& requested) {
+  const std::string name = requested == "auto" ? pick_auto_backend(registry) : requested;
+  auto plugin = registry.backend(name);
+  PrismBackendProbe probe = plugin->probe();
+  if (!probe.usable) throw RuntimeError("backend '" + name + "' cannot run here: " + probe.reason);
+  return {name, start_backend(*plugin, name)};
+}
+
+std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::string& name) {
+  std::unique_ptr<Backend> backend;
+  try {
+    backend = plugin.create();
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw RuntimeError("backend '" + name + "' failed to start: " + e.what());
+  }
+  if (!backend) throw RuntimeError("backend '" + name + "' failed to start");
+  return backend;
 }
 
 }  // namespace prism

@@ -20,10 +20,10 @@ namespace prism {
 using json::Json;
 using json::ObjectReader;
 
-namespace {
+namespace loader {
 
-Camera read_camera(const Json& value) {
-  ObjectReader r(value, "camera");
+Camera read_camera(const Json& value, const std::string& path) {
+  ObjectReader r(value, path);
   Camera camera;
   camera.position = r.required_vec3("position", json::kLength);
   camera.fov_y = r.number("fov_y", 60.0, {0.0, 180.0, true, true});
@@ -52,10 +52,9 @@ Camera read_camera(const Json& value) {
   return camera;
 }
 
-ImageSettings read_image(const Json* value) {
+ImageSettings read_image(const Json& value, const std::string& path) {
   ImageSettings image;
-  if (!value) return image;
-  ObjectReader r(*value, "image");
+  ObjectReader r(value, path);
   image.width = r.integer("width", image.width, 1, limits::kMaxImageSide);
   image.height = r.integer("height", image.height, 1, limits::kMaxImageSide);
   image.spp = r.integer("spp", image.spp, 1, limits::kMaxSpp);
@@ -64,38 +63,36 @@ ImageSettings read_image(const Json* value) {
   return image;
 }
 
-void read_textures(const Json* value, const std::filesystem::path& base_dir, Scene& scene,
-                   std::map<std::string, int>& by_name) {
-  if (!value) return;
-  size_t pixels_left = limits::kMaxTexturePixels;  // shared by every texture of the scene
-  if (!value->is_object()) json::fail("textures", "must be an object of name: path, got " + json::describe(*value));
-  for (auto it = value->begin(); it != value->end(); ++it) {
-    const std::string path = json::child_path("textures", it.key());
-    std::string file;
-    bool srgb = true;
-    if (it.value().is_string()) {
-      file = it.value().get<std::string>();
-    } else {
-      ObjectReader r(it.value(), path);
-      file = json::read_string(r.at("path"), r.path_of("path"));
-      if (const Json* s = r.find("srgb")) {
-        if (!s->is_boolean()) json::fail(r.path_of("srgb"), "must be true or false, got " + json::describe(*s));
-        srgb = s->get<bool>();
-      }
-      r.finish();
+Texture read_texture(const Json& value, const std::string& name, const std::string& path,
+                     const std::filesystem::path& base_dir, size_t pixels_left) {
+  std::string file;
+  bool srgb = true;
+  if (value.is_string()) {
+    file = value.get<std::string>();
+  } else {
+    ObjectReader r(value, path);
+    file = json::read_string(r.at("path"), r.path_of("path"));
+    if (const Json* s = r.find("srgb")) {
+      if (!s->is_boolean()) json::fail(r.path_of("srgb"), "must be true or false, got " + json::describe(*s));
+      srgb = s->get<bool>();
     }
-    std::filesystem::path resolved = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
-    Texture texture;
-    try {
-      texture = load_texture(resolved, srgb, pixels_left);
-    } catch (const InputError& e) {
-      json::fail(path, e.what());
-    }
-    texture.name = it.key();
-    pixels_left -= size_t(texture.width) * size_t(texture.height);
-    by_name[it.key()] = static_cast<int>(scene.textures.size());
-    scene.textures.push_back(std::move(texture));
+    r.finish();
   }
+  std::filesystem::path resolved = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
+  Texture texture;
+  try {
+    texture = load_texture(resolved, srgb, pixels_left);
+  } catch (const InputError& e) {
+    json::fail(path, e.what());
+  }
+  texture.name = name;
+  return texture;
+}
+
+size_t texture_pixels_left(const Scene& scene) {
+  size_t used = 0;
+  for (const Texture& t : scene.textures) used += size_t(t.width) * size_t(t.height);
+  return used >= limits::kMaxTexturePixels ? 0 : limits::kMaxTexturePixels - used;
 }
 
 int texture_index(const std::map<std::string, int>& textures, const std::string& name, const std::string& path) {
@@ -125,19 +122,8 @@ Material read_material(const Json& value, const std::string& path, const std::ma
   return m;
 }
 
-std::map<std::string, int> read_materials(const Json* value, const std::map<std::string, int>& textures, Scene& scene) {
-  std::map<std::string, int> by_name;
-  scene.materials.push_back(Material{});  // index 0: what an object without `material` gets
-  if (!value) return by_name;
-  if (!value->is_object()) json::fail("materials", "must be an object of name: material, got " + json::describe(*value));
-  for (auto it = value->begin(); it != value->end(); ++it) {
-    Material m = read_material(it.value(), json::child_path("materials", it.key()), textures);
-    m.name = it.key();
-    by_name[it.key()] = static_cast<int>(scene.materials.size());
-    scene.materials.push_back(m);
-  }
-  return by_name;
-}
+glm::dvec3 read_ambient(ObjectReader& r) { return r.vec3("ambient", {0, 0, 0}, json::kNonNegative); }
+glm::dvec3 read_shadow_ambient(ObjectReader& r) { return r.vec3("shadow_ambient", {0, 0, 0}, json::kUnit); }
 
 Light read_light(const Json& value, const std::string& path) {
   ObjectReader r(value, path);
@@ -163,10 +149,10 @@ Light read_light(const Json& value, const std::string& path) {
   return light;
 }
 
-Background read_background(const Json* value, const std::map<std::string, int>& textures, const Scene& scene) {
+Background read_background(const Json& value, const std::string& path, const std::map<std::string, int>& textures,
+                           const Scene& scene) {
   Background bg;
-  if (!value) return bg;
-  ObjectReader r(*value, "background");
+  ObjectReader r(value, path);
   if (const Json* faces = r.find("cubemap")) {
     r.require_absent("color", "a background has either color or cubemap, not both");
     const std::string path = r.path_of("cubemap");
@@ -190,6 +176,39 @@ Background read_background(const Json* value, const std::map<std::string, int>& 
   return bg;
 }
 
+}  // namespace loader
+
+namespace {
+
+using namespace loader;
+
+// Every texture shares one pixel budget (limits::kMaxTexturePixels).
+void read_textures(const Json* value, const std::filesystem::path& base_dir, Scene& scene,
+                   std::map<std::string, int>& by_name) {
+  if (!value) return;
+  if (!value->is_object()) json::fail("textures", "must be an object of name: path, got " + json::describe(*value));
+  for (auto it = value->begin(); it != value->end(); ++it) {
+    const std::string path = json::child_path("textures", it.key());
+    Texture texture = read_texture(it.value(), it.key(), path, base_dir, texture_pixels_left(scene));
+    by_name[it.key()] = static_cast<int>(scene.textures.size());
+    scene.textures.push_back(std::move(texture));
+  }
+}
+
+std::map<std::string, int> read_materials(const Json* value, const std::map<std::string, int>& textures, Scene& scene) {
+  std::map<std::string, int> by_name;
+  scene.materials.push_back(Material{});  // index 0: what an object without `material` gets
+  if (!value) return by_name;
+  if (!value->is_object()) json::fail("materials", "must be an object of name: material, got " + json::describe(*value));
+  for (auto it = value->begin(); it != value->end(); ++it) {
+    Material m = read_material(it.value(), json::child_path("materials", it.key()), textures);
+    m.name = it.key();
+    by_name[it.key()] = static_cast<int>(scene.materials.size());
+    scene.materials.push_back(m);
+  }
+  return by_name;
+}
+
 template <typename ReadFn>
 void for_each_in_array(const Json* value, const std::string& path, ReadFn read) {
   if (!value) return;
@@ -204,13 +223,13 @@ Scene read_scene(const Json& root, const std::filesystem::path& base_dir, Regist
   if (!version.is_number_integer()) json::fail("prism", "must be the integer 1, got " + json::describe(version));
   if (version.get<long long>() != 1)
     json::fail("prism", "unsupported format version " + json::describe(version) + " (this build reads 1)");
-  scene.camera = read_camera(r.at("camera"));
-  scene.image = read_image(r.find("image"));
-  scene.ambient = r.vec3("ambient", {0, 0, 0}, json::kNonNegative);
-  scene.shadow_ambient = r.vec3("shadow_ambient", {0, 0, 0}, json::kUnit);
+  scene.camera = read_camera(r.at("camera"), "camera");
+  if (const Json* image = r.find("image")) scene.image = read_image(*image, "image");
+  scene.ambient = read_ambient(r);
+  scene.shadow_ambient = read_shadow_ambient(r);
   std::map<std::string, int> textures;
   read_textures(r.find("textures"), base_dir, scene, textures);
-  scene.background = read_background(r.find("background"), textures, scene);
+  if (const Json* background = r.find("background")) scene.background = read_background(*background, "background", textures, scene);
   auto materials = read_materials(r.find("materials"), textures, scene);
   for_each_in_array(r.find("lights"), "lights",
                     [&](const Json& v, const std::string& p) { scene.lights.push_back(read_light(v, p)); });
@@ -268,7 +287,7 @@ Scene load_scene_from_string(const std::string& text, const std::filesystem::pat
   return scene;
 }
 
-Scene load_scene(const std::filesystem::path& file, Registry& registry) {
+std::string read_scene_text(const std::filesystem::path& file) {
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(file, error);
   if (!error) check_scene_size(size, file.string(), false);  // before reading a byte
@@ -278,7 +297,32 @@ Scene load_scene(const std::filesystem::path& file, Registry& registry) {
   const std::string text = read_at_most(in, limits::kMaxSceneFileBytes + 1);
   if (in.bad()) throw InputError(file.string() + ": cannot read scene file");
   check_scene_size(text.size(), file.string(), true);
-  return load_scene_from_string(text, file.parent_path(), registry, file.string());
+  return text;
+}
+
+Scene load_scene(const std::filesystem::path& file, Registry& registry) {
+  return load_scene_from_string(read_scene_text(file), file.parent_path(), registry, file.string());
+}
+
+std::vector<Camera> load_cameras_from_string(const std::string& text, const std::string& source_name) {
+  check_scene_size(text.size(), source_name, false);
+  const Json root = json::parse_strict(text, source_name);
+  std::vector<Camera> cameras;
+  try {
+    ObjectReader r(root, "");
+    const Json& list = r.at("cameras");
+    if (!list.is_array() || list.empty())
+      json::fail("cameras", "must be a non-empty array of cameras, got " + json::describe(list));
+    for (size_t i = 0; i < list.size(); ++i) cameras.push_back(read_camera(list[i], json::index_path("cameras", i)));
+    r.finish();
+  } catch (const InputError& e) {
+    throw InputError(source_name + ": " + e.what());
+  }
+  return cameras;
+}
+
+std::vector<Camera> load_cameras(const std::filesystem::path& file) {
+  return load_cameras_from_string(read_scene_text(file), file.string());
 }
 
 }  // namespace prism

@@ -112,7 +112,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
     return result;
   }
   auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<Backend> backend = cli::start_backend(*plugin, name);
+  std::unique_ptr<Backend> backend = start_backend(*plugin, name);
   result.start_ms = ms_since(start);
   result.memory.loaded_bytes = resident_bytes();
   result.memory.frame_bytes = frame_bytes(options.settings);
@@ -153,7 +153,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
 
   if (options.check && options.frames > 0) {
     // What `prism render` does for that camera: a fresh backend, prepared once, one render.
-    std::unique_ptr<Backend> fresh = cli::start_backend(*plugin, name);
+    std::unique_ptr<Backend> fresh = start_backend(*plugin, name);
     fresh->prepare(scene);
     Image expected;
     timed_frame(*fresh, options.settings, cameras(options.frames - 1), &expected);

@@ -144,7 +144,7 @@ class SceneRun {
     result.image = scene.image;
     result.reference_backend = "reference";
     std::optional<ImageFile> truth = stored_reference(result);
-    cli::BackendChoice reference = cli::open_backend(registry_, "reference");
+    cli::BackendChoice reference = open_backend(registry_, "reference");
     reference.backend->prepare(scene);
     Timed r = timed_render(*reference.backend, settings_for(scene, true));
     result.reference = std::move(r.image);
@@ -191,7 +191,7 @@ class SceneRun {
       return b;
     }
     try {
-      const std::unique_ptr<Backend> backend = cli::start_backend(*subject.plugin, subject.name);
+      const std::unique_ptr<Backend> backend = start_backend(*subject.plugin, subject.name);
       backend->prepare(scene);
       Timed t = timed_render(*backend, settings_for(scene, false));
       const BackendStats stats = backend->stats();

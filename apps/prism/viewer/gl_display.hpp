@@ -3,7 +3,7 @@
 // the 8-bit sRGB codes a .png from prism holds), the status band blended over
 // its top-left corner, and reading the back buffer for --capture.
 // Needs the window's context current for every call, construction and
-// destruction included.
+// destruction included. Exported from libprism_view.so like window.hpp.
 #pragma once
 
 #include <cstdint>
@@ -11,9 +11,13 @@
 
 #include "bitmap_font.hpp"
 
+#ifndef PRISM_VIEW_API
+#define PRISM_VIEW_API __attribute__((visibility("default")))
+#endif
+
 namespace prism::viewer {
 
-class GlDisplay {
+class PRISM_VIEW_API GlDisplay {
  public:
   GlDisplay();  // throws RuntimeError when the shaders do not build
   ~GlDisplay();

@@ -66,7 +66,7 @@ Window::Window(int width, int height, const std::string& title) {
   glfwSetErrorCallback(on_glfw_error);
   const char* display = std::getenv("DISPLAY");
   if (!display || !*display)
-    throw RuntimeError("no display: the DISPLAY environment variable is not set (prism view needs an X server; "
+    throw RuntimeError("no display: the DISPLAY environment variable is not set (a window needs an X server; "
                        "without a screen, run it under Xvfb, e.g. xvfb-run)");
   if (!glfwInit())
     throw RuntimeError("cannot open display '" + std::string(display) + "': " + glfw_last_error);

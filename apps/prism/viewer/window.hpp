@@ -1,10 +1,16 @@
 // The viewer's GLFW window: a GL 3.3 core context for display (EGL first,
 // the native GLX path if that fails), input gathered by callbacks, and the
 // context switching the backends need.
+// Lives in libprism_view.so, exported for `prism view` only: this header is
+// not installed (prism/view_window.hpp is the installed interface).
 #pragma once
 
 #include <string>
 #include <utility>
+
+#ifndef PRISM_VIEW_API
+#define PRISM_VIEW_API __attribute__((visibility("default")))
+#endif
 
 struct GLFWwindow;
 
@@ -21,7 +27,7 @@ struct Input {
   int fly_right = 0, fly_up = 0, fly_forward = 0;
 };
 
-class Window {
+class PRISM_VIEW_API Window {
  public:
   // Initialises GLFW and opens the window, its context current on this
   // thread. Throws RuntimeError when there is no display or no usable

@@ -20,8 +20,18 @@
 
 namespace prism {
 
+// A rectangle of an image's pixels; (x, y) is its top-left pixel.
+struct PixelRect {
+  int x = 0, y = 0, width = 0, height = 0;
+  friend bool operator==(const PixelRect&, const PixelRect&) = default;
+};
+
 struct RenderSettings {
   ImageSettings image;  // the scene's, with command-line overrides applied
+  // Renders only these pixels of the image (a tile of a distributed render):
+  // the Image is region-sized, its row 0 the region's top row, and every
+  // pixel equals the same pixel of a whole-image render, bit for bit.
+  std::optional<PixelRect> region;
   // Renders from this camera instead of the scene's (an interactive viewer
   // moves it every frame without preparing the scene again).
   std::optional<Camera> camera;
@@ -66,11 +76,52 @@ struct BackendStats {
   std::map<std::string, std::string> info;       // e.g. device name, program cache hit/miss
 };
 
+// What changed in a prepared scene since the backend last saw it (the
+// library API's live updates, prism/api.hpp). The Scene is the same object
+// the backend prepared, edited in place.
+struct SceneChanges {
+  // Objects whose record, frame or material changed; ids unchanged. Ascending, unique.
+  std::vector<uint32_t> objects;
+  bool objects_added_or_removed = false;  // ids may have shifted: what holds objects is rebuilt
+  bool materials = false;   // a material changed or was added
+  bool lights = false;      // a light changed, was added or removed
+  bool textures = false;    // a texture was added
+  bool environment = false; // background, ambient or shadow_ambient
+  bool any() const {
+    return !objects.empty() || objects_added_or_removed || materials || lights || textures || environment;
+  }
+};
+
+// Cumulative counters every backend keeps in BackendStats::counters, so that
+// callers and tests can see what prepare() and update() did.
+namespace counter {
+inline constexpr const char* kPrepares = "prepares";                  // prepare() calls
+inline constexpr const char* kUpdates = "updates";                    // update() calls
+inline constexpr const char* kObjectsUploaded = "objects_uploaded";   // object records (re)read or (re)sent
+inline constexpr const char* kBvhBuilds = "bvh_builds";               // acceleration structures built from scratch
+inline constexpr const char* kBvhRefits = "bvh_refits";               // ... refitted in place
+inline constexpr const char* kKernelBuilds = "kernel_builds";         // GPU kernels generated and built
+}  // namespace counter
+
+// The pixels a render covers: the region, or the whole image.
+inline PixelRect render_rect(const RenderSettings& settings) {
+  return settings.region.value_or(PixelRect{0, 0, settings.image.width, settings.image.height});
+}
+
+// InputError unless the region lies inside the image and is not empty.
+void check_region(const RenderSettings& settings);
+
 class Backend {
  public:
   virtual ~Backend() = default;
   // Build acceleration structures for `scene`, which outlives the backend's use of it.
   virtual void prepare(const Scene& scene) = 0;
+  // Brings the backend up to date with `scene` (the one last prepared, edited
+  // in place) after `changes`. A backend that cannot do better prepares again.
+  virtual void update(const Scene& scene, const SceneChanges& changes) {
+    (void)changes;
+    prepare(scene);
+  }
   virtual Image render(const RenderSettings& settings) = 0;
   virtual std::vector<TraceResult> trace(std::span<const TraceQuery> rays) = 0;
   virtual BackendStats stats() const = 0;
@@ -80,7 +131,7 @@ class Backend {
 
 extern "C" {
 
-#define PRISM_BACKEND_ABI_VERSION 2u
+#define PRISM_BACKEND_ABI_VERSION 3u  // 3: Backend::update
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
 typedef struct PrismBackendProbe {

@@ -73,8 +73,11 @@ struct PluginReport {
 
 class Registry {
  public:
-  // Search folders: PRISM_PLUGIN_PATH entries, then the install-relative default.
+  // Search folders: PRISM_PLUGIN_PATH entries, then <core_library_folder()>/prism,
+  // then <folder of the executable>/../lib/prism.
   static std::vector<std::filesystem::path> default_search_path();
+  // The folder libprism_core.so was loaded from (empty when unknown).
+  static std::filesystem::path core_library_folder();
   explicit Registry(std::vector<std::filesystem::path> search_path = default_search_path());
 
   const std::vector<std::filesystem::path>& search_path() const { return search_path_; }
@@ -98,6 +101,20 @@ class Registry {
   std::map<std::string, std::shared_ptr<const BackendPlugin>> backends_;
   std::mutex mutex_;  // guards primitives_ and backends_
 };
+
+// A started backend and its name (`auto` resolved).
+struct OpenedBackend {
+  std::string name;
+  std::unique_ptr<Backend> backend;
+};
+
+// The usable backend with the highest speed_rank; InputError when none is.
+std::string pick_auto_backend(Registry& registry);
+// Loads, probes and starts the backend `name` ("auto": pick_auto_backend).
+// Unknown or unloadable: InputError; cannot run or start here: RuntimeError.
+OpenedBackend open_backend(Registry& registry, const std::string& name);
+// Creates a backend already probed usable; RuntimeError when it fails to start.
+std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::string& name);
 
 // Loads one plugin file; nullptr with `error` set when it is not a usable plugin.
 std::shared_ptr<const PrimitivePlugin> load_primitive_plugin(const std::filesystem::path& path,

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "prism/registry.hpp"
 #include "prism/scene.hpp"
@@ -17,6 +18,15 @@ Scene load_scene(const std::filesystem::path& file, Registry& registry);
 // The same from JSON text; relative texture paths resolve against `base_dir`.
 Scene load_scene_from_string(const std::string& json, const std::filesystem::path& base_dir,
                              Registry& registry, const std::string& source_name = "<string>");
+
+// The text of a scene file, refused (InputError) when it cannot be read or
+// is over limits::kMaxSceneFileBytes.
+std::string read_scene_text(const std::filesystem::path& file);
+
+// A camera path: {"cameras": [camera, ...]}, each camera as a scene file's
+// `camera` (errors name `cameras[i].field`). At least one camera.
+std::vector<Camera> load_cameras(const std::filesystem::path& file);
+std::vector<Camera> load_cameras_from_string(const std::string& json, const std::string& source_name);
 
 // Checks a command-line override against the same range as the scene field.
 void check_image_settings(const ImageSettings& image, const std::string& where);
