@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the whole test suite: the CTest suite of the main build, then the unit
 # and shading tests again in an AddressSanitizer + UBSan build (build-asan/),
-# the fuzzers for 30 s each (scripts/fuzz.sh, build-fuzz/).
+# the fuzzers for 20 s each (scripts/fuzz.sh, build-fuzz/).
 # Exits non-zero when anything fails.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -25,10 +25,10 @@ ASAN_OPTIONS=abort_on_error=1:intercept_tls_get_addr=0 UBSAN_OPTIONS=print_stack
   PRISM_REQUIRE_BACKENDS=reference,embree,opengl,vulkan \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" -L 'unit|shading'
 
-# 30 s of libFuzzer on each of the scene loader and the ray reader (long
-# runs are separate: scripts/fuzz.sh --seconds 3600)
+# 20 s of libFuzzer on each of the scene loader and the ray reader
 # (build-fuzz/, clang), after replaying every input that once found a bug.
-scripts/fuzz.sh --seconds 30
+# Long runs are separate: scripts/fuzz.sh --seconds 3600.
+scripts/fuzz.sh --seconds 20
 
 # ThreadSanitizer: the concurrency test only (two scenes rendered at once
 # through the core's API), with just what it loads: the core, the primitive
