@@ -152,9 +152,10 @@ void expect_identical(const Image& expected, const Image& got, const char* what)
 
 class ConcurrentRender : public testing::TestWithParam<std::string> {
  protected:
-  void SetUp() override {
-    if (!require_backend_or_skip(GetParam())) return;
-    Registry registry;  // one at a time: the expected images
+  void SetUp() override { require_backend_or_skip(GetParam()); }
+  // The expected images, rendered one at a time (only by the tests that need them).
+  void render_alone() {
+    Registry registry;
     alone_a_ = load_and_render(scene_a(), registry, GetParam());
     alone_b_ = load_and_render(scene_b(), registry, GetParam());
   }
@@ -162,6 +163,7 @@ class ConcurrentRender : public testing::TestWithParam<std::string> {
 };
 
 TEST_P(ConcurrentRender, TwoScenesWithTheirOwnRegistries) {
+  render_alone();
   Image a, b;
   run_together([&] { Registry r; a = load_and_render(scene_a(), r, GetParam()); },
                [&] { Registry r; b = load_and_render(scene_b(), r, GetParam()); });
@@ -171,6 +173,7 @@ TEST_P(ConcurrentRender, TwoScenesWithTheirOwnRegistries) {
 
 // The shared registry is fresh: both threads load plugins into it at once.
 TEST_P(ConcurrentRender, TwoScenesSharingOneRegistry) {
+  render_alone();
   Registry registry;
   Image a, b;
   run_together([&] { a = load_and_render(scene_a(), registry, GetParam()); },
@@ -182,6 +185,7 @@ TEST_P(ConcurrentRender, TwoScenesSharingOneRegistry) {
 // One loaded Scene (read-only once loaded) prepared and rendered by two
 // backend instances at once.
 TEST_P(ConcurrentRender, OneSceneTwoBackendInstances) {
+  render_alone();
   Registry registry;
   const Scene scene = load_scene(scene_a(), registry);
   Image a1, a2;
