@@ -1,5 +1,5 @@
 // prism bench SCENE [-b BACKENDS] [--frames N] [--warmup N] [--width W --height H --spp S --max-depth D]
-//                   [--orbit DEGREES] [--no-check] [--json F]
+//                   [--orbit DEGREES] [--no-check] [--json F] [--profile]
 // Frame time, FPS and rays per second per backend, the one-off costs apart,
 // and the memory held while rendering (apps/prism/bench/bench_run.hpp).
 // Exit 1 when a backend's last frame differs from a fresh render of its camera.
@@ -25,6 +25,7 @@ struct BenchArgs {
   int frames = 20, warmup = 2;
   double orbit = 0.25;
   bool no_check = false;
+  bool profile = false;
 };
 
 double mib(int64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
@@ -37,6 +38,21 @@ std::vector<std::string> backends_to_run(Registry& registry, const BenchArgs& ar
   return registry.backend_names_found();
 }
 
+// Where a frame's time goes: each phase's share of the render threads' time.
+void print_profile(const bench::Result& r) {
+  if (r.png_write_ms == 0 && r.exr_write_ms == 0) return;  // not profiled
+  if (r.profile_ms.empty()) {
+    std::printf("  profile: this backend does not time its phases\n");
+  } else {
+    double total = 0;
+    for (const auto& [phase, ms] : r.profile_ms) total += ms;
+    std::printf("  profile, ms per frame summed over threads (%.1f in all):", total);
+    for (const auto& [phase, ms] : r.profile_ms) std::printf(" %s %.1f (%.0f%%)", phase.c_str(), ms, 100 * ms / total);
+    std::printf("\n");
+  }
+  std::printf("  image write (last frame): png %.1f ms, exr %.1f ms\n", r.png_write_ms, r.exr_write_ms);
+}
+
 void print_result(const bench::Result& r) {
   if (!r.skipped.empty()) {
     std::printf("%s: skipped (%s)\n", r.backend.c_str(), r.skipped.c_str());
@@ -45,6 +61,7 @@ void print_result(const bench::Result& r) {
   std::printf("%s (%s): %zu frames, median %.1f ms (p10 %.1f, p90 %.1f, min %.1f, max %.1f), %.1f FPS\n",
               r.backend.c_str(), r.device.c_str(), r.frame_ms.size(), r.median_ms(), r.percentile_ms(10),
               r.percentile_ms(90), r.percentile_ms(0), r.percentile_ms(100), r.fps());
+  std::printf("  processor time: %.1f ms per frame, all threads\n", r.cpu_ms_per_frame);
   std::printf("  rays: %.2f M/s total", r.rays_per_second() / 1e6);
   const double seconds = r.rays > 0 ? double(r.rays) / r.rays_per_second() : 0;
   for (const auto& [kind, count] : r.rays_by_kind)
@@ -59,6 +76,7 @@ void print_result(const bench::Result& r) {
     std::printf(" (bound 4 x (scene %.2f MiB + frame %.2f MiB) = %.1f MiB: %s)", mib(m.scene_bytes),
                 mib(m.frame_bytes), mib(m.bound()), m.growth() <= m.bound() ? "within" : "OVER");
   std::printf("\n");
+  print_profile(r);
   if (r.checked) {
     if (r.check_max_difference == 0)
       std::printf("  check: the last frame equals a fresh render of its camera, bit for bit\n");
@@ -80,6 +98,7 @@ nlohmann::ordered_json to_json(const bench::Result& r) {
   j["frame_ms"] = {{"median", r.median_ms()}, {"p10", r.percentile_ms(10)}, {"p90", r.percentile_ms(90)},
                    {"min", r.percentile_ms(0)}, {"max", r.percentile_ms(100)}, {"all", r.frame_ms}};
   j["fps"] = r.fps();
+  j["cpu_ms_per_frame"] = r.cpu_ms_per_frame;
   j["rays"] = r.rays;
   j["rays_by_kind"] = r.rays_by_kind;
   j["rays_per_second"] = r.rays_per_second();
@@ -89,6 +108,8 @@ nlohmann::ordered_json to_json(const bench::Result& r) {
   j["memory_bytes"] = {{"loaded", m.loaded_bytes}, {"peak", m.peak_bytes}, {"growth", m.growth()},
                        {"scene", m.scene_bytes}, {"frame", m.frame_bytes}, {"bound", m.bound()}};
   if (r.checked) j["check_max_difference"] = r.check_max_difference;
+  if (!r.profile_ms.empty()) j["profile_ms"] = r.profile_ms;
+  if (r.png_write_ms > 0) j["image_write_ms"] = {{"png", r.png_write_ms}, {"exr", r.exr_write_ms}};
   return j;
 }
 
@@ -107,6 +128,8 @@ int run_bench(const BenchArgs& args) {
   options.warmup = args.warmup;
   options.orbit_degrees = args.orbit;
   options.check = !args.no_check;
+  options.profile = args.profile;
+  options.settings.profile = args.profile;
   const std::vector<std::string> names = backends_to_run(registry, args);
 
   const ImageSettings& image = options.settings.image;
@@ -152,6 +175,8 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--orbit", args->orbit, "Camera yaw per frame about the viewer's orbit target, degrees (0.25)");
   sub->add_flag("--no-check", args->no_check, "Skip comparing the last frame with a fresh render of its camera");
   sub->add_option("--json", args->json, "Write the results to this JSON file");
+  sub->add_flag("--profile", args->profile,
+                "Print where a frame's time goes: camera rays, secondary rays, shadow rays, shading, image write");
   return [args] { return run_bench(*args); };
 }
 

@@ -1,6 +1,7 @@
 // prism plugin check FILE.so [--object JSON] [--rays N] [-b BACKENDS]
 // Loads one primitive plugin file, prints its descriptor (type, version,
-// ABI version, fields, GLSL, refine), then traces random rays at one object
+// ABI version, fields, GLSL, refine), checks its packet entries against
+// its scalar intersector lane by lane, then traces random rays at one object
 // of its type through the reference backend (the plugin's own CPU
 // intersector, in double) and through every other usable backend (embree:
 // the same intersector behind Embree's BVH and the plugin's bounds; the GPU
@@ -19,6 +20,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "plugin_packets.hpp"
 #include "prism/errors.hpp"
 #include "prism/scene_loader.hpp"
 
@@ -212,12 +214,16 @@ int run_plugin_check(const PluginCheckArgs& args) {
   const auto hits = std::count_if(expected.begin(), expected.end(), [](const TraceResult& r) { return r.id >= 0; });
   std::printf("  reference: %lld of %d rays hit (the plugin's CPU intersector, double)\n", (long long)hits, args.rays);
   if (hits == 0) std::printf("  warning: no ray hits this object; give another with --object\n");
+  const PacketCheck packets = check_packet_entries(scene.objects[0], rays);
+  bool all_pass = packets.mismatches == 0;
+  std::printf("  packet entries: %s on %d lanes (with rays from inside and grazing rays)%s%s\n",
+              all_pass ? "agree with intersect bit for bit" : "FAIL: disagree with intersect", packets.rays,
+              all_pass ? "" : ": ", packets.first.c_str());
 
   std::vector<std::string> names = args.backends;
   if (names.empty())
     for (const std::string& name : registry.backend_names_found())
       if (name != "reference") names.push_back(name);
-  bool all_pass = true;
   for (const std::string& name : names) {
     auto backend_plugin = registry.backend(name);  // InputError when unknown
     const PrismBackendProbe probe = backend_plugin->probe();

@@ -60,6 +60,8 @@
 #include "embree_query.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -92,16 +94,26 @@ static_assert(std::is_standard_layout_v<QueryContext>);
 
 QueryContext& context_of(RTCIntersectContext* rtc) { return *reinterpret_cast<QueryContext*>(rtc); }
 
+// The float next to a finite float f, toward +infinity (sign +1) or
+// -infinity (sign -1): std::nextafter without the library call, which the
+// per-ray conversions below make millions of times a frame.
+float float_step(float f, int sign) {
+  if (f == 0.0f) return float(sign) * std::numeric_limits<float>::denorm_min();
+  const uint32_t bits = std::bit_cast<uint32_t>(f);
+  const bool away_from_zero = (f > 0.0f) == (sign > 0);
+  return std::bit_cast<float>(away_from_zero ? bits + 1u : bits - 1u);
+}
+
 float float_down(double x) {
   if (x < -std::numeric_limits<float>::max()) return -std::numeric_limits<float>::infinity();
   float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) > x ? float_step(f, -1) : f;
 }
 
 float float_up(double x) {
   if (x > std::numeric_limits<float>::max()) return std::numeric_limits<float>::infinity();
   float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+  return static_cast<double>(f) < x ? float_step(f, +1) : f;
 }
 
 double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }

@@ -47,9 +47,9 @@ void render_pixel(const Frame& f, Shader& shader, int i, int j) {
   for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(mean[c]);
 }
 
-void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts) {
+void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts, PhaseProfile* profile) {
   const PixelRect& r = f.rect;
-  Shader shader(f.scene, f.query, counts);
+  Shader shader(f.scene, f.query, counts, profile);
   int x0 = r.x + (tile % tiles_x) * kTileSize, y0 = r.y + (tile / tiles_x) * kTileSize;
   for (int j = y0; j < std::min(y0 + kTileSize, r.y + r.height); ++j)
     for (int i = x0; i < std::min(x0 + kTileSize, r.x + r.width); ++i) render_pixel(f, shader, i, j);
@@ -88,16 +88,19 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   std::atomic<int> done{0};
   std::mutex counts_mutex;
   RayCounts total;
+  PhaseProfile total_profile;
   auto run = [&](int begin, int end) {
     RayCounts counts;
+    PhaseProfile profile;
     for (int tile = begin; tile < end; ++tile) {
       if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
-      render_tile(frame, tile, tiles_x, counts);
+      render_tile(frame, tile, tiles_x, counts, settings.profile ? &profile : nullptr);
       int finished = ++done;
       if (settings.progress) settings.progress(double(finished) / tiles);
     }
     std::lock_guard lock(counts_mutex);
     total.add(counts);
+    total_profile.add(profile);
   };
   if (parallel)
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) { run(r.begin(), r.end()); });
@@ -105,6 +108,10 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
     run(0, tiles);
   throw_if_cancelled();
   add_counts(stats, total);
+  if (settings.profile) {
+    for (int phase = 0; phase < kPhases; ++phase)
+      stats.ms[std::string("profile.") + kPhaseNames[phase]] += total_profile.ms[size_t(phase)];
+  }
   stats.ms["render"] += ms_since(start);
   return image;
 }

@@ -86,7 +86,8 @@ std::string primitive_desc_problem(const PrismPrimitiveDesc& d) {
     return "desc_size " + std::to_string(d.desc_size) + " (expected " + std::to_string(sizeof(PrismPrimitiveDesc)) + ")";
   if (!plausible_name(d.type_name)) return "type_name is missing or not a name";
   if (!d.plugin_version) return "plugin_version is missing";
-  if (!d.intersect || !d.surface || !d.pack || !d.bounds) return "missing functions (intersect, surface, pack, bounds)";
+  if (!d.intersect || !d.surface || !d.pack || !d.bounds || !d.intersect_packet || !d.occluded_packet)
+    return "missing functions (intersect, surface, pack, bounds, intersect_packet, occluded_packet)";
   if (d.record_size % 16 != 0 || d.record_size > kMaxRecordSize)
     return "record_size " + std::to_string(d.record_size) + " (a multiple of 16, at most " +
            std::to_string(kMaxRecordSize) + ")";
@@ -134,7 +135,7 @@ std::shared_ptr<const PrimitivePlugin> load_primitive_plugin(const fs::path& pat
   if (!desc) return nullptr;
   if (desc->abi_version != PRISM_PRIMITIVE_ABI_VERSION) {
     error = "ABI version " + std::to_string(desc->abi_version) + ", this build of Prism needs " +
-            std::to_string(PRISM_PRIMITIVE_ABI_VERSION);
+            std::to_string(PRISM_PRIMITIVE_ABI_VERSION) + " (rebuild the plugin against this Prism's SDK)";
     return nullptr;
   }
   if (std::string problem = primitive_desc_problem(*desc); !problem.empty()) {

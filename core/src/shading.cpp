@@ -1,6 +1,7 @@
 #include "shading.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <iterator>
 
@@ -19,9 +20,30 @@ double offset_epsilon(const glm::dvec3& p) {
   return 1e-4 * (1.0 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
 }
 
+using Clock = std::chrono::steady_clock;
+
+// Adds the time of its scope to one phase of a profile (nothing without one).
+class PhaseScope {
+ public:
+  PhaseScope(PhaseProfile* profile, Phase phase) : profile_(profile), phase_(phase) {
+    if (profile_) start_ = Clock::now();
+  }
+  ~PhaseScope() {
+    if (profile_) profile_->ms[size_t(phase_)] += std::chrono::duration<double, std::milli>(Clock::now() - start_).count();
+  }
+  PhaseScope(const PhaseScope&) = delete;
+  PhaseScope& operator=(const PhaseScope&) = delete;
+
+ private:
+  PhaseProfile* profile_;
+  Phase phase_;
+  Clock::time_point start_;
+};
+
 }  // namespace
 
 static_assert(std::size(kRayKindNames) == kRayKinds);
+static_assert(std::size(kPhaseNames) == kPhases);
 
 const char* ray_kind_name(int kind) { return kRayKindNames[kind]; }
 
@@ -42,6 +64,11 @@ Hit Shader::closest(const Ray& ray, double tmin) const {
   Hit hit = query_.closest(ray, tmin);
   Hit light = intersect_light_spheres(scene_, ray, tmin, hit.t);
   return light.t < hit.t ? light : hit;  // equal t: the object wins
+}
+
+Hit Shader::closest_in_phase(const Ray& ray, Phase phase) const {
+  PhaseScope scope(profile_, phase);
+  return closest(ray, 0.0);
 }
 
 Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
@@ -76,6 +103,7 @@ void Shader::note(uint32_t value) {
 
 bool Shader::shadowed(size_t light, const Ray& ray, double distance) {
   ++counts_.n[kShadowRay];
+  PhaseScope scope(profile_, kPhaseShadowRays);
   // Neighbouring shadow rays toward one light are mostly blocked by the same
   // object: trying it first skips the whole query for them. The answer is
   // the same either way (any blocking object will do).
@@ -122,7 +150,7 @@ glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
 
 glm::dvec3 Shader::shade1(const Ray& ray) {
   ++counts_.n[kShade1Ray];
-  Hit hit = closest(ray, 0.0);
+  Hit hit = closest_in_phase(ray, kPhaseSecondaryRays);
   note(uint32_t(hit.id));
   if (!hit.found()) return background_radiance(scene_, ray.dir);
   if (hit.id < 0) return scene_.lights[size_t(-2 - hit.id)].color;
@@ -133,6 +161,9 @@ glm::dvec3 Shader::shade1(const Ray& ray) {
 }
 
 SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool want_path) {
+  // The whole sample counts as shading, less its queries (taken out at the end).
+  const std::array<double, kPhases> before = profile_ ? profile_->ms : std::array<double, kPhases>{};
+  PhaseScope sample(profile_, kPhaseShading);
   hashing_ = want_path;
   hash_ = 2166136261u;
   SampleResult result;
@@ -141,7 +172,7 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
   int kind = kCameraRay;
   for (int depth = 1; depth <= max_depth; ++depth) {
     ++counts_.n[size_t(kind)];
-    Hit hit = closest(ray, 0.0);
+    Hit hit = closest_in_phase(ray, depth == 1 ? kPhaseCameraRays : kPhaseSecondaryRays);
     if (depth == 1) result.first_id = hit.id;
     note(uint32_t(hit.id));
     if (!hit.found()) {
@@ -190,6 +221,10 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
   }
   result.radiance = radiance;
   result.path_hash = (hash_ >> 24) ^ (hash_ & 0xffffffu);  // folded to 24 bits: exact in a float
+  if (profile_) {
+    for (int phase = 0; phase < kPhases; ++phase)
+      if (phase != kPhaseShading) profile_->ms[kPhaseShading] -= profile_->ms[size_t(phase)] - before[size_t(phase)];
+  }
   return result;
 }
 

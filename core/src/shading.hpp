@@ -27,10 +27,27 @@ struct SampleResult {
   uint32_t path_hash = 0;      // the `path` AOV (24 bits, exact in a float)
 };
 
+// Where a frame's time goes (RenderSettings::profile), summed over threads.
+enum Phase { kPhaseCameraRays, kPhaseSecondaryRays, kPhaseShadowRays, kPhaseShading, kPhases };
+inline constexpr const char* kPhaseNames[] = {"camera_rays", "secondary_rays", "shadow_rays", "shading"};
+struct PhaseProfile {
+  std::array<double, kPhases> ms{};
+  void add(const PhaseProfile& o) {
+    for (size_t i = 0; i < ms.size(); ++i) ms[i] += o.ms[i];
+  }
+};
+
 class Shader {
  public:
-  Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts)
-      : scene_(scene), query_(query), counts_(counts), last_blocker_(scene.lights.size(), kMissId) {}
+  // With a profile, the time of every query and of each whole sample is
+  // added to it (shading: the sample's time less its queries). The clock
+  // reads cost some 50 ns a ray, so a profiled frame runs a little slower.
+  Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, PhaseProfile* profile = nullptr)
+      : scene_(scene),
+        query_(query),
+        counts_(counts),
+        profile_(profile),
+        last_blocker_(scene.lights.size(), kMissId) {}
   SampleResult trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
   // Closest hit with t > tmin over objects and visible light spheres (objects win ties).
   Hit closest(const Ray& ray, double tmin) const;
@@ -38,6 +55,7 @@ class Shader {
  private:
   struct Surface;  // shading data at one hit
   Surface surface_at(const Ray& ray, const Hit& hit) const;
+  Hit closest_in_phase(const Ray& ray, Phase phase) const;
   glm::dvec3 local_light(const Surface& s, const glm::dvec3& dir);
   glm::dvec3 shade1(const Ray& ray);
   bool shadowed(size_t light, const Ray& ray, double distance);
@@ -46,6 +64,7 @@ class Shader {
   const Scene& scene_;
   const ObjectQuery& query_;
   RayCounts& counts_;
+  PhaseProfile* profile_;
   bool hashing_ = false;
   uint32_t hash_ = 0;
   std::vector<int32_t> last_blocker_;  // per light: the object that blocked its last shadow ray

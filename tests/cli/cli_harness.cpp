@@ -39,9 +39,11 @@ std::vector<std::string> list_folder(const fs::path& folder) {
   return names;
 }
 
-std::vector<std::string> backends_built() {
+std::vector<std::string> backends_built() { return plugins_built("libprism_backend_"); }
+std::vector<std::string> primitives_built() { return plugins_built("libprism_primitive_"); }
+
+std::vector<std::string> plugins_built(const std::string& prefix) {
   std::vector<std::string> names;
-  const std::string prefix = "libprism_backend_";
   std::error_code ec;
   for (fs::directory_iterator it(default_plugin_folder(), ec), end; !ec && it != end; it.increment(ec)) {
     std::string file = it->path().filename().string();

@@ -37,6 +37,9 @@ std::vector<std::string> list_folder(const fs::path& folder);
 // Backends present in the default plugin folder (libprism_backend_<name>.so),
 // sorted: the ones `prism` finds, since the tests run it without PRISM_PLUGIN_PATH.
 std::vector<std::string> backends_built();
+std::vector<std::string> primitives_built();  // primitive types
+// The names after `prefix` of the plugin files built (lib<prefix><name>.so).
+std::vector<std::string> plugins_built(const std::string& prefix);
 
 // A test with its own temporary folder: `dir()` for the files a test
 // writes (scenes, rays, outputs); captured stdout and stderr live outside

@@ -6,8 +6,8 @@
 // Every backend: no NaN or Inf pixel, and at most 0.5 % of pixels differ by
 // more than 0.016 in any channel (OpenImageIO's ImageBufAlgo::compare).
 // Backends that promise double precision end to end (stats info
-// "precision": "double": the CPU backends) must also agree to 1e-5 with
-// every pixel's first-hit object id equal.
+// "precision": "double": the CPU backends) must render the reference's image
+// bit for bit, with equal id and path AOVs.
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <gtest/gtest.h>
@@ -41,6 +41,7 @@ Rendered render(prism::Registry& registry, const std::string& backend, const pri
   prism::RenderSettings settings;
   settings.image = scene.image;
   settings.aov_id = true;
+  settings.aov_path = true;
   auto instance = registry.backend(backend)->create();
   instance->prepare(scene);
   prism::Image image = instance->render(settings);
@@ -85,9 +86,12 @@ TEST_P(SceneAgreement, MatchesReferenceUpToRounding) {
   EXPECT_LE(double(cmp.nfail), 0.005 * pixels) << file << " on " << backend;
   auto precision = rendered.stats.info.find("precision");
   if (precision != rendered.stats.info.end() && precision->second == "double") {
-    // Same double-precision intersectors and shading: only the order of float rounding may differ.
-    EXPECT_LE(worst, 1e-5) << file << " on " << backend;
+    // Same double-precision intersectors and shading, and the same closest
+    // hit (the lower id on ties) whatever structure finds it: the same
+    // floats, bit for bit.
+    EXPECT_EQ(worst, 0.0) << file << " on " << backend;
     EXPECT_EQ(id_mismatches, 0u) << file << " on " << backend;
+    EXPECT_TRUE(actual.path == expected.path) << "path AOV differs: " << file << " on " << backend;
   }
 }
 

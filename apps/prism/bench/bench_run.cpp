@@ -1,13 +1,18 @@
 #include "bench/bench_run.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "cli_common.hpp"
 #include "prism/errors.hpp"
+#include "prism/image_io.hpp"
 
 namespace prism::bench {
 
@@ -61,6 +66,39 @@ double timed_frame(Backend& backend, RenderSettings settings, const Camera& came
   const double ms = ms_since(start);
   if (image) *image = std::move(frame);
   return ms;
+}
+
+// User + system time of the whole process so far (every thread).
+double process_cpu_ms() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  auto ms = [](const timeval& t) { return double(t.tv_sec) * 1e3 + double(t.tv_usec) / 1e3; };
+  return ms(usage.ru_utime) + ms(usage.ru_stime);
+}
+
+double timed_write(const Image& image, const std::filesystem::path& file) {
+  const auto start = std::chrono::steady_clock::now();
+  write_image(image, file);
+  const double ms = ms_since(start);
+  std::error_code ignored;
+  std::filesystem::remove(file, ignored);
+  return ms;
+}
+
+// The phase times of the measured frames (per frame) and the cost of
+// writing the last one, into `result`.
+void profile_frames(const BackendStats& before, const BackendStats& after, int frames, const Image& last,
+                    Result& result) {
+  const std::string prefix = "profile.";
+  for (const auto& [key, ms] : after.ms) {
+    if (key.rfind(prefix, 0) != 0) continue;
+    const auto it = before.ms.find(key);
+    result.profile_ms[key.substr(prefix.size())] = (ms - (it == before.ms.end() ? 0.0 : it->second)) / frames;
+  }
+  const std::filesystem::path folder = std::filesystem::temp_directory_path();
+  const std::string stem = "prism-bench-" + std::to_string(::getpid());
+  result.png_write_ms = timed_write(last, folder / (stem + ".png"));
+  result.exr_write_ms = timed_write(last, folder / (stem + ".exr"));
 }
 
 }  // namespace
@@ -139,10 +177,12 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
 
   reset_peak_resident();
   Image last;
+  const double cpu_before = process_cpu_ms();
   for (int i = 0; i < options.frames; ++i) {
     const Camera camera = cameras(i);
     result.frame_ms.push_back(timed_frame(*backend, options.settings, camera, i + 1 == options.frames ? &last : nullptr));
   }
+  result.cpu_ms_per_frame = (process_cpu_ms() - cpu_before) / options.frames;
   result.memory.peak_bytes = peak_resident_bytes();
   const BackendStats after = backend->stats();
   result.rays = after.rays - before.rays;
@@ -151,6 +191,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
     if (frames_count > 0) result.rays_by_kind[kind] = frames_count;
   }
 
+  if (options.profile) profile_frames(before, after, options.frames, last, result);
   if (options.check && options.frames > 0) {
     // What `prism render` does for that camera: a fresh backend, prepared once, one render.
     std::unique_ptr<Backend> fresh = start_backend(*plugin, name);

@@ -24,6 +24,7 @@ struct Options {
   int warmup = 2;             // frames before them (the first compiles a GPU kernel)
   double orbit_degrees = 0.25;  // camera yaw about its target per frame
   bool check = true;          // compare the last frame with a fresh render of its camera
+  bool profile = false;       // time a frame's phases (RenderSettings::profile) and the image write
 };
 
 struct Memory {
@@ -47,11 +48,19 @@ struct Result {
   std::string device;   // stats info.device, or the probe's description
   double start_ms = 0, build_ms = 0, compile_ms = 0, first_frame_ms = 0;
   std::vector<double> frame_ms;                   // the measured frames
+  // Processor time a measured frame took, all threads together (what a
+  // loaded machine cannot inflate the way it inflates frame_ms).
+  double cpu_ms_per_frame = 0;
   uint64_t rays = 0;                              // over the measured frames
   std::map<std::string, uint64_t> rays_by_kind;  // over the measured frames
   Memory memory;
   bool checked = false;
   double check_max_difference = 0;  // 0: bit-identical
+  // With Options::profile: ms per measured frame by phase, summed over the
+  // render threads ("camera_rays", ...; empty when the backend does not time
+  // its phases), and the time to write the last frame as PNG and as EXR.
+  std::map<std::string, double> profile_ms;
+  double png_write_ms = 0, exr_write_ms = 0;
 
   double median_ms() const;
   double percentile_ms(double p) const;  // nearest rank over frame_ms

@@ -39,6 +39,10 @@ struct RenderSettings {
   bool aov_path = false;
   // Called with the fraction done (0..1) from any thread; may be empty.
   std::function<void(double)> progress;
+  // Time the phases of the frame (backends that can: BackendStats::ms
+  // "profile.<phase>", milliseconds summed over threads). Off by default:
+  // the clock reads cost a few percent.
+  bool profile = false;
 };
 
 // A rendered frame: linear RGB, row 0 at the top.
@@ -131,7 +135,7 @@ class Backend {
 
 extern "C" {
 
-#define PRISM_BACKEND_ABI_VERSION 3u  // 3: Backend::update
+#define PRISM_BACKEND_ABI_VERSION 4u  // 3: Backend::update; 4: RenderSettings::profile
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
 typedef struct PrismBackendProbe {

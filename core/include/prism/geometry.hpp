@@ -56,6 +56,45 @@ inline bool intersect_object(const Object& object, const Ray& ray, double tmin, 
   return object.desc->intersect(object.record(), &local, tmin, tmax, &hit) != 0;
 }
 
+// Lanes of a packet of world rays (lane i is rays[i]) in the object's local
+// frame, each exactly as to_local moves it.
+inline void to_local_packet(const Object& object, const Ray* rays, uint32_t active, PrismRayPacket& out) {
+  for (uint32_t lanes = active; lanes != 0; lanes &= lanes - 1) {
+    const unsigned i = unsigned(__builtin_ctz(lanes));
+    const PrismRay local = to_local(object, rays[i]);
+    for (int a = 0; a < 3; ++a) {
+      out.origin[a][i] = local.origin[a];
+      out.dir[a][i] = local.dir[a];
+    }
+  }
+}
+
+// intersect_object for the lanes of a packet, tmin[i] < t <= tmax[i]; the
+// mask of lanes hit. One call into the plugin for the whole packet.
+inline uint32_t intersect_object_packet(const Object& object, const Ray* rays, uint32_t active, const double* tmin,
+                                        const double* tmax, PrismHit* hits) {
+  PrismRayPacket packet;
+  to_local_packet(object, rays, active, packet);
+  for (uint32_t lanes = active; lanes != 0; lanes &= lanes - 1) {
+    const unsigned i = unsigned(__builtin_ctz(lanes));
+    packet.tmin[i] = tmin[i];
+    packet.tmax[i] = tmax[i];
+  }
+  return object.desc->intersect_packet(object.record(), &packet, active, hits);
+}
+
+// blocks() for the lanes of a packet: the mask of lanes hit with 0 < t < tmax[i].
+inline uint32_t blocks_packet(const Object& object, const Ray* rays, uint32_t active, const double* tmax) {
+  PrismRayPacket packet;
+  to_local_packet(object, rays, active, packet);
+  for (uint32_t lanes = active; lanes != 0; lanes &= lanes - 1) {
+    const unsigned i = unsigned(__builtin_ctz(lanes));
+    packet.tmin[i] = 0.0;
+    packet.tmax[i] = tmax[i];
+  }
+  return object.desc->occluded_packet(object.record(), &packet, active);
+}
+
 // Whether one object is hit with 0 < t < tmax: the occlusion test.
 bool blocks(const Object& object, const Ray& ray, double tmax);
 

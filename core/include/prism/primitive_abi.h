@@ -19,6 +19,14 @@
  *
  * Version 2 added `refine`: a polish of an ill-conditioned winning hit in
  * extended precision (grazing rays, hits far from the object's origin).
+ *
+ * Version 3 added the packet entries `intersect_packet` and
+ * `occluded_packet`: up to PRISM_PACKET_SIZE rays in one call, so a packet
+ * tracer (Embree's rtcIntersect16) pays one call per candidate object for a
+ * whole packet instead of one per ray. The SDK's `describe_primitive`
+ * builds both from the scalar `intersect`; a plugin may supply its own.
+ * A plugin built against an older version is refused at load with a
+ * message that says to rebuild it against this SDK.
  */
 #ifndef PRISM_PRIMITIVE_ABI_H
 #define PRISM_PRIMITIVE_ABI_H
@@ -30,7 +38,7 @@
 extern "C" {
 #endif
 
-#define PRISM_PRIMITIVE_ABI_VERSION 2u
+#define PRISM_PRIMITIVE_ABI_VERSION 3u
 #define PRISM_PRIMITIVE_ENTRY_SYMBOL "prism_primitive_entry"
 #define PRISM_EXPORT __attribute__((visibility("default")))
 
@@ -74,6 +82,17 @@ typedef struct PrismRayExt {
   long double origin[3];
   long double dir[3];
 } PrismRayExt;
+
+/* Rays of one packet in the local frame, structure of arrays: lane i is
+ * origin[axis][i], dir[axis][i], tmin[i], tmax[i]. Only the lanes whose bit
+ * is set in the `active` mask passed beside it are meaningful. */
+#define PRISM_PACKET_SIZE 16u
+typedef struct PrismRayPacket {
+  double origin[3][PRISM_PACKET_SIZE];
+  double dir[3][PRISM_PACKET_SIZE]; /* unit length */
+  double tmin[PRISM_PACKET_SIZE];
+  double tmax[PRISM_PACKET_SIZE];
+} PrismRayPacket;
 
 typedef struct PrismHit {
   double t;
@@ -139,6 +158,14 @@ typedef struct PrismPrimitiveDesc {
    * an input rounding of one ulp moves it by more than ~1e-11 relative
    * (see prism::surface_of). */
   void (*refine)(const void* record, const PrismRayExt* ray, PrismHit* hit);
+
+  /* Version 3, required. The closest hit of every active lane with
+   * tmin < t <= tmax, exactly as `intersect` answers that lane's ray: fills
+   * hits[i] for the lanes hit and returns their mask (a subset of `active`). */
+  uint32_t (*intersect_packet)(const void* record, const PrismRayPacket* rays, uint32_t active, PrismHit* hits);
+  /* The mask of active lanes hit with tmin < t < tmax (an occlusion test:
+   * a hit at exactly tmax, the light, does not count). */
+  uint32_t (*occluded_packet)(const void* record, const PrismRayPacket* rays, uint32_t active);
 } PrismPrimitiveDesc;
 
 typedef const PrismPrimitiveDesc* (*PrismPrimitiveEntryFn)(void);

@@ -1,8 +1,9 @@
 // Conveniences for writing a primitive plugin against prism/primitive_abi.h:
 // glm <-> double[3] copies, typed record access, field-table shorthands,
-// PrismError filling, and an intersect_batch built from intersect.
+// PrismError filling, and the batch and packet queries built from intersect.
 #pragma once
 
+#include <bit>
 #include <charconv>
 #include <cstdarg>
 #include <cstddef>
@@ -81,8 +82,41 @@ void intersect_batch(const void* record, size_t count, const PrismRay* rays, con
   for (size_t i = 0; i < count; ++i) found[i] = Intersect(record, &rays[i], tmin[i], tmax[i], &hits[i]) ? 1 : 0;
 }
 
+// Lane `i` of a packet as a scalar ray.
+inline PrismRay packet_lane(const PrismRayPacket& rays, unsigned i) {
+  return PrismRay{{rays.origin[0][i], rays.origin[1][i], rays.origin[2][i]},
+                  {rays.dir[0][i], rays.dir[1][i], rays.dir[2][i]}};
+}
+
+// The packet queries as a loop over the active lanes. `Intersect` is a
+// template argument, so it is inlined into the loop: the packet costs one
+// call through the plugin table instead of one per ray, and each lane gets
+// exactly the scalar answer.
+template <IntersectFn Intersect>
+uint32_t intersect_packet(const void* record, const PrismRayPacket* rays, uint32_t active, PrismHit* hits) {
+  uint32_t found = 0;
+  for (uint32_t lanes = active; lanes != 0; lanes &= lanes - 1) {
+    const unsigned i = unsigned(std::countr_zero(lanes));
+    const PrismRay ray = packet_lane(*rays, i);
+    if (Intersect(record, &ray, rays->tmin[i], rays->tmax[i], &hits[i])) found |= 1u << i;
+  }
+  return found;
+}
+
+template <IntersectFn Intersect>
+uint32_t occluded_packet(const void* record, const PrismRayPacket* rays, uint32_t active) {
+  uint32_t blocked = 0;
+  for (uint32_t lanes = active; lanes != 0; lanes &= lanes - 1) {
+    const unsigned i = unsigned(std::countr_zero(lanes));
+    const PrismRay ray = packet_lane(*rays, i);
+    PrismHit hit;
+    if (Intersect(record, &ray, rays->tmin[i], rays->tmax[i], &hit) && hit.t < rays->tmax[i]) blocked |= 1u << i;
+  }
+  return blocked;
+}
+
 // A plugin's descriptor table from the parts that differ between plugins;
-// the batch query is the loop over `Intersect`. `glsl_source` defines
+// the batch and packet queries are loops over `Intersect`. `glsl_source` defines
 // `<glsl_prefix>_intersect` and `<glsl_prefix>_surface` (see primitive_abi.h);
 // `refine` polishes ill-conditioned hits (prism/sdk/refine.hpp).
 template <IntersectFn Intersect, size_t FieldCount>
@@ -112,7 +146,9 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                             surface,
                             glsl_source,
                             glsl_prefix,
-                            refine};
+                            refine,
+                            intersect_packet<Intersect>,
+                            occluded_packet<Intersect>};
 }
 
 // Fills a PrismSurface from local point, normal and uv.

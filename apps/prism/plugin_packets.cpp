@@ -1,0 +1,103 @@
+#include "plugin_packets.hpp"
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "prism/geometry.hpp"
+
+namespace prism::cli {
+
+namespace {
+
+constexpr unsigned kLanes = PRISM_PACKET_SIZE;
+
+// Beside each ray that hits: one starting just inside the surface along the
+// same direction, and one skimming the surface at the hit point.
+std::vector<Ray> rays_with_stiff_cases(const Object& object, std::span<const TraceQuery> given) {
+  const double size = object.bounded ? glm::length(object.world_bounds.hi - object.world_bounds.lo) : 4.0;
+  std::vector<Ray> rays;
+  for (const TraceQuery& q : given) {
+    const Ray ray{q.origin, q.dir};
+    rays.push_back(ray);
+    PrismHit hit;
+    if (!intersect_object(object, ray, 0.0, kInfinity, hit)) continue;
+    const SurfacePoint s = surface_of(object, ray, hit);
+    rays.push_back(Ray{s.position + 1e-3 * size * ray.dir, ray.dir});
+    const glm::dvec3 across = glm::cross(s.normal, ray.dir);
+    if (glm::length(across) > 1e-9) {
+      const glm::dvec3 tangent = glm::normalize(glm::cross(across, s.normal));
+      rays.push_back(Ray{s.position - size * tangent, tangent});
+    }
+  }
+  return rays;
+}
+
+std::string describe(const char* what, const Ray& ray, double tmin, double tmax) {
+  char text[512];
+  std::snprintf(text, sizeof text, "%s differs for the ray from (%.17g, %.17g, %.17g) along (%.17g, %.17g, %.17g), "
+                "t in (%.17g, %.17g]", what, ray.origin.x, ray.origin.y, ray.origin.z, ray.dir.x, ray.dir.y,
+                ray.dir.z, tmin, tmax);
+  return text;
+}
+
+struct PacketBounds {
+  uint32_t active = 0;
+  double tmin[kLanes] = {};
+  double tmax[kLanes] = {};
+};
+
+// Random lanes, and bounds that cut some hits: tmax at, just below, or past
+// a scalar hit, tmin 0 or a little more.
+PacketBounds random_bounds(const Object& object, const Ray* rays, unsigned count, std::mt19937_64& rng) {
+  PacketBounds b;
+  const uint32_t all = count >= 32 ? ~0u : (1u << count) - 1u;
+  while (b.active == 0) b.active = uint32_t(rng()) & all;
+  for (unsigned i = 0; i < count; ++i) {
+    b.tmin[i] = rng() % 4 == 0 ? 1e-3 : 0.0;
+    PrismHit hit;
+    const bool hits = intersect_object(object, rays[i], b.tmin[i], kInfinity, hit);
+    switch (rng() % 3) {
+      case 0: b.tmax[i] = kInfinity; break;
+      case 1: b.tmax[i] = hits ? hit.t : 10.0; break;
+      default: b.tmax[i] = hits ? std::nextafter(hit.t, 0.0) : 1.0; break;
+    }
+  }
+  return b;
+}
+
+bool same_hit(const PrismHit& a, const PrismHit& b) {
+  return a.t == b.t && std::memcmp(a.data, b.data, sizeof a.data) == 0 && a.part == b.part;
+}
+
+void check_packet(const Object& object, const Ray* rays, unsigned count, std::mt19937_64& rng, PacketCheck& out) {
+  const PacketBounds b = random_bounds(object, rays, count, rng);
+  PrismHit hits[kLanes];
+  const uint32_t found = intersect_object_packet(object, rays, b.active, b.tmin, b.tmax, hits);
+  const uint32_t blocked = blocks_packet(object, rays, b.active, b.tmax);
+  for (unsigned i = 0; i < count; ++i) {
+    if (!(b.active >> i & 1u)) continue;
+    ++out.rays;
+    PrismHit hit;
+    const bool scalar_found = intersect_object(object, rays[i], b.tmin[i], b.tmax[i], hit);
+    const bool packet_found = (found >> i & 1u) != 0;
+    const bool closest_ok = scalar_found == packet_found && (!scalar_found || same_hit(hit, hits[i]));
+    const bool occluded_ok = blocks(object, rays[i], b.tmax[i]) == ((blocked >> i & 1u) != 0);
+    if (closest_ok && occluded_ok) continue;
+    if (out.mismatches++ == 0)
+      out.first = describe(closest_ok ? "occluded_packet" : "intersect_packet", rays[i], b.tmin[i], b.tmax[i]);
+  }
+}
+
+}  // namespace
+
+PacketCheck check_packet_entries(const Object& object, std::span<const TraceQuery> given) {
+  const std::vector<Ray> rays = rays_with_stiff_cases(object, given);
+  std::mt19937_64 rng(20261202);
+  PacketCheck out;
+  for (size_t at = 0; at < rays.size(); at += kLanes)
+    check_packet(object, &rays[at], unsigned(std::min<size_t>(kLanes, rays.size() - at)), rng, out);
+  return out;
+}
+
+}  // namespace prism::cli
