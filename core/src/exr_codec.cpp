@@ -1,4 +1,5 @@
 // OpenEXR through the OpenEXR library (the C++ Imf API, single-threaded).
+#include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -172,15 +173,20 @@ void read_exr(const std::filesystem::path& file, int max_channels, const RowSink
 void write_exr(int fd, const ImageFile& image, PixelFormat storage) {
   const std::vector<std::string> names = channel_names_to_write(image);
   if (int(names.size()) != image.channels) throw CodecError("channel names do not match the channel count");
-  const Imf::PixelType type = storage == PixelFormat::Half ? Imf::HALF : Imf::FLOAT;
+  const bool half = storage == PixelFormat::Half;
+  const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
+  // OpenEXR writes a channel only from a slice of its own type.
+  std::vector<Imath::half> halves;
+  if (half) halves.assign(image.pixels.begin(), image.pixels.end());
+  char* base = half ? reinterpret_cast<char*>(halves.data()) : reinterpret_cast<char*>(const_cast<float*>(image.pixels.data()));
+  const size_t value_size = half ? sizeof(Imath::half) : sizeof(float);
   Imf::Header header(image.width, image.height);
   header.compression() = Imf::ZIP_COMPRESSION;
   Imf::FrameBuffer frame;
-  const size_t x_stride = size_t(image.channels) * sizeof(float), y_stride = x_stride * size_t(image.width);
+  const size_t x_stride = size_t(image.channels) * value_size, y_stride = x_stride * size_t(image.width);
   for (size_t c = 0; c < names.size(); ++c) {
     header.channels().insert(names[c], Imf::Channel(type));
-    frame.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(const_cast<float*>(image.pixels.data() + c)),
-                                      x_stride, y_stride));
+    frame.insert(names[c], Imf::Slice(type, base + c * value_size, x_stride, y_stride));
   }
   FdOutput stream(fd);
   try {

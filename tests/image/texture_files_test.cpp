@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <limits>
 
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
