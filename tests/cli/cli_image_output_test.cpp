@@ -49,6 +49,37 @@ TEST_F(ImageOutput, ATextureOnlyOpenImageIOReadsLoadsIt) {
   EXPECT_EQ(json::parse(read_file(path("s.json")))["loaded_libraries"]["openimageio"], true);
 }
 
+// libpng prints its warnings and errors on stderr unless a handler takes
+// them: a texture with a damaged ancillary chunk (a warning, the chunk is
+// dropped) renders with nothing on stderr, and a cut one fails with Prism's
+// one-line message only.
+TEST_F(ImageOutput, LibpngPrintsNothingOfItsOwn) {
+  write_image_file(path("tex.png"), ImageFile{2, 2, 3, {}, PixelFormat::UInt8, std::vector<float>(12, 0.5f)},
+                   PixelFormat::UInt8);
+  const std::string png = read_file(path("tex.png"));
+  // After the signature (8 bytes) and IHDR (25): a tEXt chunk whose CRC is wrong.
+  const std::string text_chunk = std::string("\0\0\0\x05tEXtab\0cd", 13) + "\xde\xad\xbe\xef";
+  write_file(path("damaged.png"), png.substr(0, 33) + text_chunk + png.substr(33));
+  write_file(path("cut.png"), png.substr(0, png.size() - 20));
+  for (const char* texture : {"damaged.png", "cut.png"}) {
+    SCOPED_TRACE(texture);
+    SceneText text;
+    text.extra = std::string(R"("textures": {"t": ")") + texture + R"("}, "materials": {"m": {"texture": "t"}})";
+    text.objects = R"([{"type": "sphere", "radius": 1, "material": "m"}])";
+    scene_ = write("textured.json", text.text()).string();
+    const RunResult r = render(path("out.png"));
+    if (std::string(texture) == "damaged.png") {
+      EXPECT_TRUE(ExitedWith(r, 0));
+      EXPECT_EQ(r.err, "");
+    } else {
+      EXPECT_TRUE(ExitedWith(r, 2));
+      EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+      EXPECT_TRUE(StderrHas(r, {"textures.t: cannot read image '" + path("cut.png").string() + "': cannot decode: "}));
+      EXPECT_EQ(r.err.find("libpng"), std::string::npos) << r.err;
+    }
+  }
+}
+
 // A 64 KiB tmpfs in the test's folder, filled up on request.
 class FullDiskOutput : public ImageOutput {
  protected:

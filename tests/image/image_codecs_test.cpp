@@ -54,18 +54,21 @@ void write_with_oiio(const fs::path& file, int width, int height, const std::vec
 // of each row as PNG stores them (big-endian 16-bit samples, packed palette indices).
 void write_png_raw(const fs::path& file, int width, int height, int bit_depth, int color_type,
                    const std::vector<std::vector<png_byte>>& rows, const std::vector<png_color>& palette = {},
-                   const std::vector<png_byte>& transparency = {}) {
+                   const std::vector<png_byte>& transparency = {}, bool interlaced = false) {
   FILE* out = std::fopen(file.c_str(), "wb");
   ASSERT_NE(out, nullptr);
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png_create_info_struct(png);
   png_init_io(png, out);
-  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), bit_depth, color_type, PNG_INTERLACE_NONE,
+  png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), bit_depth, color_type,
+               interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
                PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
   if (!palette.empty()) png_set_PLTE(png, info, palette.data(), int(palette.size()));
   if (!transparency.empty()) png_set_tRNS(png, info, transparency.data(), int(transparency.size()), nullptr);
   png_write_info(png, info);
-  for (const auto& row : rows) png_write_row(png, row.data());
+  std::vector<png_bytep> pointers;
+  for (const auto& row : rows) pointers.push_back(const_cast<png_bytep>(row.data()));
+  png_write_image(png, pointers.data());
   png_write_end(png, info);
   png_destroy_write_struct(&png, &info);
   std::fclose(out);
@@ -172,8 +175,13 @@ TEST_F(ImageCodecs, EveryPngLayoutReadsAsOpenImageIOReadsIt) {
   write_png_raw(dir_ / "palette.png", 3, 1, 8, PNG_COLOR_TYPE_PALETTE, {{2, 0, 1}}, palette);
   write_png_raw(dir_ / "palette_alpha.png", 3, 1, 8, PNG_COLOR_TYPE_PALETTE, {{2, 0, 1}}, palette, {0, 77});
   write_png_raw(dir_ / "palette2.png", 4, 1, 2, PNG_COLOR_TYPE_PALETTE, {{0x1b}}, palette);
+  std::vector<std::vector<png_byte>> rows(9);
+  for (size_t y = 0; y < rows.size(); ++y)
+    for (int x = 0; x < 9 * 3; ++x) rows[y].push_back(png_byte(y * 29 + size_t(x) * 7));
+  write_png_raw(dir_ / "interlaced.png", 9, 9, 8, PNG_COLOR_TYPE_RGB, rows, {}, {}, true);
   for (const char* name : {"grey8.png", "grey16.png", "grey4.png", "grey_alpha8.png", "grey_alpha16.png", "rgb8.png",
-                           "rgb16.png", "rgba8.png", "rgba16.png", "palette.png", "palette_alpha.png", "palette2.png"})
+                           "rgb16.png", "rgba8.png", "rgba16.png", "palette.png", "palette_alpha.png", "palette2.png",
+                           "interlaced.png"})
     expect_read_like_oiio(dir_ / name);
 }
 
