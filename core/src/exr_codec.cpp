@@ -1,4 +1,5 @@
-// OpenEXR through the OpenEXR library (the C++ Imf API, single-threaded).
+// libprism_exr.so: OpenEXR through the OpenEXR library (the C++ Imf API,
+// single-threaded), loaded on first use (see image_codecs.hpp).
 #include <Imath/half.h>
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -18,7 +19,6 @@
 #include <vector>
 
 #include "image_codecs.hpp"
-#include "prism/cancel.hpp"
 
 namespace prism::codec {
 
@@ -121,7 +121,6 @@ class ExrReader {
     const size_t row_floats = size_t(header_.width) * size_t(channels);
     std::vector<float> block(row_floats * kRowsPerBlock);
     for (int y0 = 0; y0 < header_.height; y0 += kRowsPerBlock) {
-      throw_if_cancelled();
       const int rows = std::min(kRowsPerBlock, header_.height - y0);
       read_block(shape.channel_names, y0, rows, block.data());
       for (int r = 0; r < rows; ++r) sink.row(y0 + r, block.data() + size_t(r) * row_floats);
@@ -156,21 +155,20 @@ std::vector<std::string> channel_names_to_write(const ImageFile& image) {
   return names;
 }
 
-}  // namespace
 
-ImageFile read_exr_header(const std::filesystem::path& file) {
+ImageFile exr_header(const std::filesystem::path& file) {
   ExrReader reader;
   reader.open(file);
   return reader.header();
 }
 
-void read_exr(const std::filesystem::path& file, int max_channels, const RowSink& sink) {
+void read_exr_rows(const std::filesystem::path& file, int max_channels, const RowSink& sink) {
   ExrReader reader;
   reader.open(file);
   reader.read(max_channels, sink);
 }
 
-void write_exr(int fd, const ImageFile& image, PixelFormat storage) {
+void write_exr_file(int fd, const ImageFile& image, PixelFormat storage) {
   const std::vector<std::string> names = channel_names_to_write(image);
   if (int(names.size()) != image.channels) throw CodecError("channel names do not match the channel count");
   const bool half = storage == PixelFormat::Half;
@@ -199,4 +197,39 @@ void write_exr(int fd, const ImageFile& image, PixelFormat storage) {
   if (stream.error()) throw CodecError(std::strerror(stream.error()));
 }
 
+// What the sink throws (a stop request, a bad texel) goes through to the caller.
+template <typename Fn>
+std::string answer(Fn fn, bool& unsupported) {
+  try {
+    fn();
+  } catch (const CodecError& e) {
+    return e.what();
+  } catch (const Unsupported& e) {
+    unsupported = true;
+    return e.what();
+  }
+  return "";
+}
+
+std::string module_read_header(const std::filesystem::path& file, ImageFile& out, bool& unsupported) {
+  return answer([&] { out = exr_header(file); }, unsupported);
+}
+
+std::string module_read(const std::filesystem::path& file, int max_channels, const RowSink& sink, bool& unsupported) {
+  return answer([&] { read_exr_rows(file, max_channels, sink); }, unsupported);
+}
+
+std::string module_write(int fd, const ImageFile& image, PixelFormat storage) {
+  bool unsupported = false;
+  return answer([&] { write_exr_file(fd, image, storage); }, unsupported);
+}
+
+const ExrModule exr_module_table = {module_read_header, module_read, module_write};
+
+}  // namespace
+
 }  // namespace prism::codec
+
+extern "C" __attribute__((visibility("default"))) const prism::codec::ExrModule* prism_exr_module(void) {
+  return &prism::codec::exr_module_table;
+}

@@ -1,3 +1,4 @@
+#include <dlfcn.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -6,6 +7,7 @@
 #include <fstream>
 
 #include "image_codecs.hpp"
+#include "prism/errors.hpp"
 
 namespace prism::codec {
 
@@ -28,21 +30,52 @@ Format format_of_extension(const std::filesystem::path& file) {
   return Format::Other;
 }
 
-int write_fully(int fd, const void* data, size_t size) {
-  const char* bytes = static_cast<const char*>(data);
-  while (size > 0) {
-    const ssize_t n = ::write(fd, bytes, size);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) return errno;
-    if (n == 0) return EIO;
-    bytes += n;
-    size -= size_t(n);
-  }
-  return 0;
-}
-
 void write_all(int fd, const void* data, size_t size) {
   if (const int error = write_fully(fd, data, size)) throw CodecError(std::strerror(error));
 }
+
+const void* load_core_module(const std::string& file_name, const char* symbol) {
+  Dl_info info{};
+  std::filesystem::path path = file_name;
+  if (dladdr(reinterpret_cast<void*>(&load_core_module), &info) && info.dli_fname)
+    path = std::filesystem::path(info.dli_fname).parent_path() / file_name;
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // kept for the life of the process
+  if (!handle) {
+    const char* why = dlerror();
+    throw RuntimeError("cannot load image support " + path.string() + ": " + (why ? why : "dlopen failed"));
+  }
+  auto entry = reinterpret_cast<const void* (*)()>(dlsym(handle, symbol));
+  if (!entry) throw RuntimeError("cannot load image support: " + path.string() + " has no " + symbol);
+  return entry();
+}
+
+namespace {
+
+const ExrModule& exr_module() {
+  static const auto* module = static_cast<const ExrModule*>(load_core_module("libprism_exr.so", PRISM_EXR_MODULE_SYMBOL));
+  return *module;
+}
+
+// The module's answer as the exceptions the other codecs throw.
+void raise(const std::string& error, bool unsupported) {
+  if (unsupported) throw Unsupported(error);
+  if (!error.empty()) throw CodecError(error);
+}
+
+}  // namespace
+
+ImageFile read_exr_header(const std::filesystem::path& file) {
+  ImageFile header;
+  bool unsupported = false;
+  raise(exr_module().read_header(file, header, unsupported), unsupported);
+  return header;
+}
+
+void read_exr(const std::filesystem::path& file, int max_channels, const RowSink& sink) {
+  bool unsupported = false;
+  raise(exr_module().read(file, max_channels, sink, unsupported), unsupported);
+}
+
+void write_exr(int fd, const ImageFile& image, PixelFormat storage) { raise(exr_module().write(fd, image, storage), false); }
 
 }  // namespace prism::codec

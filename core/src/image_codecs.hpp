@@ -7,6 +7,9 @@
 // the same channel order, the same float values, unassociated alpha.
 #pragma once
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <filesystem>
 #include <functional>
 #include <stdexcept>
@@ -43,13 +46,15 @@ struct RowSink {
   std::function<void(int y, const float* values)> row;
 };
 
-// Headers only; CodecError / Unsupported.
+// Headers only; CodecError / Unsupported. OpenEXR's libraries cost a
+// process some 5 ms of start-up, so the EXR functions load them on first
+// use from libprism_exr.so (beside libprism_core.so).
 ImageFile read_png_header(const std::filesystem::path& file);
 ImageFile read_jpeg_header(const std::filesystem::path& file);
 ImageFile read_exr_header(const std::filesystem::path& file);
 
 // Decodes rows into `sink`, at most `max_channels` channels per pixel (the
-// first ones in OpenImageIO's order). Checks prism::cancel between rows.
+// first ones in OpenImageIO's order). The sink checks the stop request.
 void read_png(const std::filesystem::path& file, int max_channels, const RowSink& sink);
 void read_jpeg(const std::filesystem::path& file, int max_channels, const RowSink& sink);
 void read_exr(const std::filesystem::path& file, int max_channels, const RowSink& sink);
@@ -60,9 +65,38 @@ void read_exr(const std::filesystem::path& file, int max_channels, const RowSink
 void write_png(int fd, const ImageFile& image, PixelFormat storage);
 void write_exr(int fd, const ImageFile& image, PixelFormat storage);
 
-// Writes all of `size` bytes to `fd`, retrying short writes: 0, or the errno of the failure.
-int write_fully(int fd, const void* data, size_t size);
+// Writes all of `size` bytes to `fd`, retrying short writes: 0, or the errno
+// of the failure. Inline: libprism_exr.so uses it too.
+inline int write_fully(int fd, const void* data, size_t size) {
+  const char* bytes = static_cast<const char*>(data);
+  while (size > 0) {
+    const ssize_t n = ::write(fd, bytes, size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return errno;
+    if (n == 0) return EIO;
+    bytes += n;
+    size -= size_t(n);
+  }
+  return 0;
+}
 // The same, throwing CodecError with the system's message.
 void write_all(int fd, const void* data, size_t size);
 
+// The table libprism_exr.so exports. Each function returns "" or the error;
+// `unsupported` says the file is valid but left to OpenImageIO.
+struct ExrModule {
+  std::string (*read_header)(const std::filesystem::path& file, ImageFile& out, bool& unsupported);
+  std::string (*read)(const std::filesystem::path& file, int max_channels, const RowSink& sink, bool& unsupported);
+  std::string (*write)(int fd, const ImageFile& image, PixelFormat storage);
+};
+
+// dlopen()s `file_name` from beside libprism_core.so (build and install
+// trees alike) and calls its entry `symbol`; RuntimeError when it cannot.
+const void* load_core_module(const std::string& file_name, const char* symbol);
+
 }  // namespace prism::codec
+
+extern "C" {
+typedef const prism::codec::ExrModule* (*PrismExrModuleFn)(void);
+#define PRISM_EXR_MODULE_SYMBOL "prism_exr_module"
+}

@@ -1,14 +1,12 @@
 #include "prism/image_file.hpp"
 
-#include <dlfcn.h>
-
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <mutex>
 
 #include "image_codecs.hpp"
 #include "image_module.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_io.hpp"
 
@@ -16,31 +14,8 @@ namespace prism {
 
 namespace {
 
-// libprism_oiio.so lives beside libprism_core.so (build and install trees alike).
-std::filesystem::path module_path() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&read_image_file), &info) && info.dli_fname)
-    return std::filesystem::path(info.dli_fname).parent_path() / "libprism_oiio.so";
-  return "libprism_oiio.so";
-}
-
 const ImageModule& image_module() {
-  static std::once_flag once;
-  static const ImageModule* module = nullptr;
-  static std::string error;
-  std::call_once(once, [] {
-    const std::filesystem::path path = module_path();
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // kept for the life of the process
-    if (!handle) {
-      const char* why = dlerror();
-      error = "cannot load image support " + path.string() + ": " + (why ? why : "dlopen failed");
-      return;
-    }
-    auto entry = reinterpret_cast<PrismImageModuleFn>(dlsym(handle, PRISM_IMAGE_MODULE_SYMBOL));
-    if (!entry) error = "cannot load image support: " + path.string() + " has no " + PRISM_IMAGE_MODULE_SYMBOL;
-    else module = entry();
-  });
-  if (!module) throw RuntimeError(error);
+  static const auto* module = static_cast<const ImageModule*>(codec::load_core_module("libprism_oiio.so", PRISM_IMAGE_MODULE_SYMBOL));
   return *module;
 }
 
@@ -112,7 +87,10 @@ void read_image_rows(const std::filesystem::path& file, size_t max_pixels, int m
                                    if (!error.empty()) throw codec::CodecError(error);
                                    sink.header(header);
                                  },
-                                 sink.row};
+                                 [&](int y, const float* values) {
+                                   throw_if_cancelled();
+                                   sink.row(y, values);
+                                 }};
     try {
       return read_rows_natively(format, file, max_channels, checked);
     } catch (const codec::CodecError& e) {
