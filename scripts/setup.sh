@@ -7,7 +7,7 @@ cd "$(dirname "$0")/.."
 packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev nlohmann-json3-dev libcli11-dev libfmt-dev
-  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libpng-dev libjpeg62-turbo-dev libopenexr-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglfw3-dev
   xvfb xauth x11-apps glslang-tools spirv-tools chromium

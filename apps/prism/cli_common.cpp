@@ -10,6 +10,7 @@
 
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
+#include "prism/image_file.hpp"
 #include "prism/image_io.hpp"
 
 namespace prism::cli {
@@ -25,8 +26,8 @@ double PhaseTimer::total() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
 }
 
-void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
-                 std::map<std::string, double> ms) {
+StagedFile stage_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
+                       std::map<std::string, double> ms) {
   const BackendStats stats = choice.backend->stats();
   // A GPU backend compiles its kernel inside its first render or trace call:
   // that time is `compile`, not `render`.
@@ -49,7 +50,14 @@ void write_stats(const std::string& file, const BackendChoice& choice, const Sce
     times[phase] = it == ms.end() ? 0.0 : it->second;
   }
   j["ms"] = times;
-  write_text_file_atomically(file, j.dump(2) + "\n");
+  // Whether this run needed OpenImageIO (PNG, JPEG and EXR do not).
+  j["loaded_libraries"] = {{"openimageio", openimageio_loaded()}};
+  return stage_text_file(file, j.dump(2) + "\n");
+}
+
+void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
+                 std::map<std::string, double> ms) {
+  stage_stats(file, choice, scene, timer, std::move(ms)).commit();
 }
 
 namespace {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "prism/backend.hpp"
+#include "prism/image_io.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene.hpp"
 #include "prism/scene_loader.hpp"
@@ -47,6 +48,10 @@ class PhaseTimer {
 // backend's own compile time, and the total so far.
 void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
                  std::map<std::string, double> ms);
+// The same, written under a temporary name and not yet in place, for a
+// command that commits it together with its main output.
+StagedFile stage_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
+                       std::map<std::string, double> ms);
 
 // Makes SIGINT and SIGTERM request cancellation (prism/cancel.hpp), so a
 // render or trace stops within a tile, its temporary file is removed and

@@ -1,6 +1,7 @@
 // prism render SCENE -b BACKEND -o OUT.(png|exr) [overrides] [--aov id,path] [--stats F.json]
 //   [--frames N [--orbit DEG] | --cameras FILE] [--mpi [--tile N]]
 #include <cstdio>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -55,15 +56,22 @@ int run_render(const RenderArgs& args) {
   BackendChoice choice = open_backend(registry, args.backend);
   choice.backend->prepare(scene);
   ms["build"] = timer.lap();
+  std::optional<StagedFile> last;
   for (size_t f = 0; f < plan.cameras.size(); ++f) {
+    if (last) last->commit();
     settings.camera = plan.cameras[f];
     settings.progress = progress_bar();
     Image image = choice.backend->render(settings);
     finish_progress_bar();
     ms["render"] += timer.lap();
-    write_image(image, plan.outputs[f]);
+    last.emplace(stage_image(image, plan.outputs[f]));
   }
-  if (!args.stats.empty()) write_stats(args.stats, choice, scene, timer, ms);
+  // The last image and the statistics are both complete on disk before
+  // either replaces its older file: failing to write one keeps both.
+  std::optional<StagedFile> stats;
+  if (!args.stats.empty()) stats.emplace(stage_stats(args.stats, choice, scene, timer, ms));
+  if (last) last->commit();
+  if (stats) stats->commit();
   return 0;
 }
 

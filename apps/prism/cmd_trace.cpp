@@ -2,6 +2,7 @@
 // One line per ray in: ox,oy,oz,dx,dy,dz[,tmin]; one line per ray out:
 // t,object,nx,ny,nz of the closest hit with t > tmin (a miss: inf,-1,0,0,0).
 #include <cstdio>
+#include <optional>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
@@ -48,8 +49,12 @@ int run_trace(const TraceArgs& args) {
   ms["build"] = timer.lap();
   auto results = choice.backend->trace(rays);
   ms["render"] = timer.lap();
-  write_text_file_atomically(args.output, format_results(results, args.digits));
-  if (!args.stats.empty()) write_stats(args.stats, choice, scene, timer, ms);
+  // Both complete on disk before either replaces its older file.
+  StagedFile output = stage_text_file(args.output, format_results(results, args.digits));
+  std::optional<StagedFile> stats;
+  if (!args.stats.empty()) stats.emplace(stage_stats(args.stats, choice, scene, timer, ms));
+  output.commit();
+  if (stats) stats->commit();
   return 0;
 }
 

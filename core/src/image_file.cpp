@@ -1,41 +1,21 @@
 #include "prism/image_file.hpp"
 
-#include <dlfcn.h>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 
-#include <mutex>
-
+#include "image_codecs.hpp"
 #include "image_module.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
+#include "prism/image_io.hpp"
 
 namespace prism {
 
 namespace {
 
-// libprism_oiio.so lives beside libprism_core.so (build and install trees alike).
-std::filesystem::path module_path() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&read_image_file), &info) && info.dli_fname)
-    return std::filesystem::path(info.dli_fname).parent_path() / "libprism_oiio.so";
-  return "libprism_oiio.so";
-}
-
 const ImageModule& image_module() {
-  static std::once_flag once;
-  static const ImageModule* module = nullptr;
-  static std::string error;
-  std::call_once(once, [] {
-    const std::filesystem::path path = module_path();
-    void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // kept for the life of the process
-    if (!handle) {
-      const char* why = dlerror();
-      error = "cannot load image support " + path.string() + ": " + (why ? why : "dlopen failed");
-      return;
-    }
-    auto entry = reinterpret_cast<PrismImageModuleFn>(dlsym(handle, PRISM_IMAGE_MODULE_SYMBOL));
-    if (!entry) error = "cannot load image support: " + path.string() + " has no " + PRISM_IMAGE_MODULE_SYMBOL;
-    else module = entry();
-  });
-  if (!module) throw RuntimeError(error);
+  static const auto* module = static_cast<const ImageModule*>(codec::load_core_module("libprism_oiio.so", PRISM_IMAGE_MODULE_SYMBOL));
   return *module;
 }
 
@@ -52,16 +32,101 @@ void require_regular_file(const std::filesystem::path& file) {
 
 }  // namespace
 
-ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels, int max_channels) {
-  require_regular_file(file);
+namespace {
+
+std::string pixel_limit_error(const ImageFile& header, size_t max_pixels) {
+  const size_t pixels = size_t(header.width) * size_t(header.height);
+  if (pixels <= max_pixels) return "";
+  return "the image has " + std::to_string(pixels) + " pixels, more than the limit of " + std::to_string(max_pixels);
+}
+
+// Through OpenImageIO, for the formats and variants Prism's own readers leave to it.
+void read_rows_with_oiio(const std::filesystem::path& file, size_t max_pixels, int max_channels,
+                         const ImageRowSink& sink) {
   ImageFile image;
   std::string error = image_module().read(file, max_pixels, max_channels, image);
   if (!error.empty()) throw InputError("cannot read image '" + file.string() + "': " + error);
+  std::vector<float> pixels = std::move(image.pixels);
+  sink.header(image);
+  const size_t row = size_t(image.width) * size_t(image.channels);
+  for (int y = 0; y < image.height; ++y) sink.row(y, pixels.data() + size_t(y) * row);
+}
+
+void read_rows_natively(codec::Format format, const std::filesystem::path& file, int max_channels,
+                        const codec::RowSink& sink) {
+  switch (format) {
+    case codec::Format::Png: return codec::read_png(file, max_channels, sink);
+    case codec::Format::Jpeg: return codec::read_jpeg(file, max_channels, sink);
+    default: return codec::read_exr(file, max_channels, sink);
+  }
+}
+
+ImageFile read_header_natively(codec::Format format, const std::filesystem::path& file) {
+  switch (format) {
+    case codec::Format::Png: return codec::read_png_header(file);
+    case codec::Format::Jpeg: return codec::read_jpeg_header(file);
+    default: return codec::read_exr_header(file);
+  }
+}
+
+// The format from the file's first bytes; a file that cannot be opened is an InputError here.
+codec::Format format_of(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError("cannot read image '" + file.string() + "': " + std::strerror(errno));
+  return codec::format_of_file(file);
+}
+
+}  // namespace
+
+void read_image_rows(const std::filesystem::path& file, size_t max_pixels, int max_channels, const ImageRowSink& sink) {
+  require_regular_file(file);
+  const codec::Format format = format_of(file);
+  if (format != codec::Format::Other) {
+    const codec::RowSink checked{[&](const ImageFile& header) {
+                                   const std::string error = pixel_limit_error(header, max_pixels);
+                                   if (!error.empty()) throw codec::CodecError(error);
+                                   sink.header(header);
+                                 },
+                                 [&](int y, const float* values) {
+                                   throw_if_cancelled();
+                                   sink.row(y, values);
+                                 }};
+    try {
+      return read_rows_natively(format, file, max_channels, checked);
+    } catch (const codec::CodecError& e) {
+      throw InputError("cannot read image '" + file.string() + "': " + e.what());
+    } catch (const codec::Unsupported&) {
+      // left to OpenImageIO below
+    }
+  }
+  read_rows_with_oiio(file, max_pixels, max_channels, sink);
+}
+
+ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels, int max_channels) {
+  ImageFile image;
+  size_t row_floats = 0;
+  read_image_rows(file, max_pixels, max_channels,
+                  {[&](const ImageFile& header) {
+                     image = header;
+                     row_floats = size_t(header.width) * size_t(header.channels);
+                     image.pixels.reserve(row_floats * size_t(header.height));
+                   },
+                   [&](int, const float* values) { image.pixels.insert(image.pixels.end(), values, values + row_floats); }});
   return image;
 }
 
 ImageFile read_image_header(const std::filesystem::path& file) {
   require_regular_file(file);
+  const codec::Format format = format_of(file);
+  if (format != codec::Format::Other) {
+    try {
+      return read_header_natively(format, file);
+    } catch (const codec::CodecError& e) {
+      throw InputError("cannot read image '" + file.string() + "': " + e.what());
+    } catch (const codec::Unsupported&) {
+      // left to OpenImageIO below
+    }
+  }
   ImageFile image;
   std::string error = image_module().read_header(file, image);
   if (!error.empty()) throw InputError("cannot read image '" + file.string() + "': " + error);
@@ -69,8 +134,27 @@ ImageFile read_image_header(const std::filesystem::path& file) {
 }
 
 void write_image_file(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage) {
-  std::string error = image_module().write(file, image, storage);
-  if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
+  const codec::Format format = codec::format_of_extension(file);
+  write_file_atomically(file, [&](const std::filesystem::path& temporary, int fd) {
+    try {
+      if (format == codec::Format::Png) return codec::write_png(fd, image, storage);
+      if (format == codec::Format::Exr) return codec::write_exr(fd, image, storage);
+    } catch (const codec::CodecError& e) {
+      throw RuntimeError("cannot write " + file.string() + ": " + e.what());
+    }
+    // OpenImageIO opens the temporary by its name (which keeps the extension, so it picks the writer).
+    std::string error = image_module().write(temporary, image, storage);
+    if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
+  });
+}
+
+bool openimageio_loaded() {
+  std::ifstream maps("/proc/self/maps");
+  std::string line;
+  while (std::getline(maps, line))
+    if (line.find("libprism_oiio.so") != std::string::npos || line.find("libOpenImageIO") != std::string::npos)
+      return true;
+  return false;
 }
 
 ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, float threshold) {

@@ -1,6 +1,7 @@
 #include "prism/image_io.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -8,8 +9,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 
+#include "image_codecs.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
@@ -43,30 +44,35 @@ fs::path temporary_name(const fs::path& file) {
   return file.parent_path() / name;
 }
 
-// Runs `write` on a temporary file, then renames it over `file`; on any
-// failure (or a cancel request) the temporary is removed and `file` is untouched.
-template <typename WriteFn>
-void write_atomically(const fs::path& file, WriteFn write) {
-  const fs::path tmp = temporary_name(file);
-  try {
-    write(tmp);
-    // An interrupted run leaves the older file as it was, even when the
-    // request came in while this one was being written.
-    throw_if_cancelled();
+// The file a write replaces: `file`, or the end of the chain of symbolic
+// links it names (a dangling link's target too), so the link stays a link.
+fs::path write_target(const fs::path& file) {
+  fs::path target = file;
+  for (int hops = 0; hops < 40; ++hops) {
     std::error_code ec;
-    fs::rename(tmp, file, ec);
-    if (ec) throw RuntimeError("cannot write " + file.string() + ": " + ec.message());
-  } catch (...) {
-    std::error_code ignored;
-    fs::remove(tmp, ignored);
-    throw;
+    if (!fs::is_symlink(fs::symlink_status(target, ec))) return target;
+    const fs::path link = fs::read_symlink(target, ec);
+    if (ec) return target;
+    target = link.is_absolute() ? link : target.parent_path() / link;
   }
+  throw RuntimeError("cannot write " + file.string() + ": too many levels of symbolic links");
+}
+
+[[noreturn]] void fail_writing(const fs::path& file, int error) {
+  throw RuntimeError("cannot write " + file.string() + ": " + std::strerror(error));
+}
+
+// A replaced file keeps its permission bits (not its owner: that needs root).
+void keep_mode(const fs::path& target, int fd, const fs::path& file) {
+  struct stat old {};
+  if (::stat(target.c_str(), &old) != 0 || !S_ISREG(old.st_mode)) return;
+  if (::fchmod(fd, old.st_mode & 07777) != 0) fail_writing(file, errno);
 }
 
 // Creates and removes the temporary file the write will use: access() alone
 // passes where the write later fails (root, read-only mounts, /proc).
 void probe_temporary(const fs::path& file) {
-  const fs::path tmp = temporary_name(file);
+  const fs::path tmp = temporary_name(write_target(file));
   const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
   if (fd < 0) {
     const int error = errno;
@@ -77,7 +83,7 @@ void probe_temporary(const fs::path& file) {
   ::unlink(tmp.c_str());
 }
 
-void write_png(const Image& image, const fs::path& path) {
+ImageFile png_pixels(const Image& image) {
   ImageFile file{image.width, image.height, 3, {}, PixelFormat::UInt8, {}};
   file.pixels.resize(image.rgb.size());
   for (size_t i = 0; i < file.pixels.size(); ++i) {
@@ -85,10 +91,10 @@ void write_png(const Image& image, const fs::path& path) {
     double v = std::clamp(double(image.rgb[i]), 0.0, 1.0);
     file.pixels[i] = static_cast<float>(std::lround(255.0 * linear_to_srgb(v)) / 255.0);
   }
-  write_image_file(path, file, PixelFormat::UInt8);
+  return file;
 }
 
-void write_exr(const Image& image, const fs::path& path) {
+ImageFile exr_pixels(const Image& image) {
   std::vector<std::string> names = {"R", "G", "B"};
   if (!image.id.empty()) names.push_back("id");
   if (!image.path.empty()) names.push_back("path");
@@ -102,7 +108,17 @@ void write_exr(const Image& image, const fs::path& path) {
     if (!image.id.empty()) out[c++] = image.id[p];
     if (!image.path.empty()) out[c++] = image.path[p];
   }
-  write_image_file(path, file, PixelFormat::Float);
+  return file;
+}
+
+// The nearest folder above `file` that exists, for the message about a missing one.
+fs::path nearest_existing(fs::path folder) {
+  std::error_code ec;
+  while (!folder.empty() && !fs::exists(fs::symlink_status(folder, ec))) {
+    if (folder == folder.parent_path()) break;
+    folder = folder.parent_path();
+  }
+  return folder;
 }
 
 }  // namespace
@@ -118,26 +134,90 @@ void check_output_path(const fs::path& file, const std::vector<std::string>& ext
   std::error_code ec;
   // An output that cannot be written is a run-time failure (exit 1) in the
   // format's terms, but it is found here, before any rendering.
-  if (!fs::is_directory(folder, ec)) throw RuntimeError(file.string() + ": folder " + folder.string() + " does not exist");
+  if (!fs::is_directory(folder, ec)) {
+    // "a/b.png" where "a" is a file: "a" is not a folder (it exists).
+    const fs::path existing = nearest_existing(folder);
+    if (!existing.empty() && !fs::is_directory(existing, ec))
+      throw RuntimeError(file.string() + ": " + existing.string() + " is not a folder");
+    throw RuntimeError(file.string() + ": folder " + folder.string() + " does not exist");
+  }
   if (::access(folder.c_str(), W_OK) != 0)
     throw RuntimeError(file.string() + ": folder " + folder.string() + " is not writable");
   if (fs::is_directory(file, ec)) throw RuntimeError(file.string() + ": is a folder");
   probe_temporary(file);
 }
 
-void write_image(const Image& image, const fs::path& file) {
+StagedFile::StagedFile(const fs::path& file, const std::function<void(const fs::path&, int)>& write)
+    : file_(file), target_(write_target(file)), temporary_(temporary_name(target_)) {
+  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) fail_writing(file_, errno);
+  try {
+    keep_mode(target_, fd, file_);
+    try {
+      write(temporary_, fd);
+    } catch (const codec::CodecError& e) {
+      throw RuntimeError("cannot write " + file_.string() + ": " + e.what());
+    }
+    // On disk before it replaces anything: a crash or a full disk found
+    // only at write-back must not leave an empty file under the old name.
+    if (::fsync(fd) != 0) fail_writing(file_, errno);
+  } catch (...) {
+    ::close(fd);
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+    throw;
+  }
+  if (::close(fd) != 0) {
+    const int error = errno;
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+    fail_writing(file_, error);
+  }
+}
+
+StagedFile::StagedFile(StagedFile&& other) noexcept
+    : file_(std::move(other.file_)), target_(std::move(other.target_)), temporary_(std::move(other.temporary_)),
+      committed_(other.committed_) {
+  other.committed_ = true;  // the moved-from object owns no temporary
+}
+
+StagedFile::~StagedFile() {
+  if (committed_) return;
+  std::error_code ignored;
+  fs::remove(temporary_, ignored);
+}
+
+void StagedFile::commit() {
+  // An interrupted run leaves the older file as it was, even when the
+  // request came in while this one was being written.
+  throw_if_cancelled();
+  if (::rename(temporary_.c_str(), target_.c_str()) != 0) fail_writing(file_, errno);
+  // The folder is not synced: after a crash the name holds the old file or
+  // the new one, both whole, and that sync would cost a render ~5 ms.
+  committed_ = true;
+}
+
+void write_file_atomically(const fs::path& file, const std::function<void(const fs::path&, int)>& write) {
+  StagedFile(file, write).commit();
+}
+
+StagedFile stage_image(const Image& image, const fs::path& file) {
   const std::string ext = lower_extension(file);
   if (ext != ".png" && ext != ".exr") throw InputError(file.string() + ": unsupported output type '" + ext + "'");
-  write_atomically(file, [&](const fs::path& tmp) { ext == ".png" ? write_png(image, tmp) : write_exr(image, tmp); });
+  return StagedFile(file, [&](const fs::path&, int fd) {
+    if (ext == ".png") codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
+    else codec::write_exr(fd, exr_pixels(image), PixelFormat::Float);
+  });
+}
+
+void write_image(const Image& image, const fs::path& file) { stage_image(image, file).commit(); }
+
+StagedFile stage_text_file(const fs::path& file, const std::string& contents) {
+  return StagedFile(file, [&](const fs::path&, int fd) { codec::write_all(fd, contents.data(), contents.size()); });
 }
 
 void write_text_file_atomically(const fs::path& file, const std::string& contents) {
-  write_atomically(file, [&](const fs::path& tmp) {
-    std::ofstream out(tmp, std::ios::binary);
-    out << contents;
-    out.close();
-    if (!out) throw RuntimeError("cannot write " + file.string());
-  });
+  stage_text_file(file, contents).commit();
 }
 
 }  // namespace prism

@@ -8,6 +8,7 @@
 #include "json_reader.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene.hpp"
+#include "prism/texture.hpp"
 
 namespace prism::loader {
 
@@ -24,6 +25,8 @@ inline glm::dmat3 read_rotation(const json::Json& value, const std::string& path
 Camera read_camera(const json::Json& value, const std::string& path);
 ImageSettings read_image(const json::Json& value, const std::string& path);
 // One texture: a path string or {path, srgb}, resolved against `base_dir`.
+TextureRequest read_texture_request(const json::Json& value, const std::string& name, const std::string& path,
+                                    const std::filesystem::path& base_dir);
 Texture read_texture(const json::Json& value, const std::string& name, const std::string& path,
                      const std::filesystem::path& base_dir, size_t pixels_left);
 // What the scene's textures leave of limits::kMaxTexturePixels.

@@ -63,8 +63,8 @@ ImageSettings read_image(const Json& value, const std::string& path) {
   return image;
 }
 
-Texture read_texture(const Json& value, const std::string& name, const std::string& path,
-                     const std::filesystem::path& base_dir, size_t pixels_left) {
+TextureRequest read_texture_request(const Json& value, const std::string& name, const std::string& path,
+                                    const std::filesystem::path& base_dir) {
   std::string file;
   bool srgb = true;
   if (value.is_string()) {
@@ -79,14 +79,12 @@ Texture read_texture(const Json& value, const std::string& name, const std::stri
     r.finish();
   }
   std::filesystem::path resolved = std::filesystem::path(file).is_absolute() ? std::filesystem::path(file) : base_dir / file;
-  Texture texture;
-  try {
-    texture = load_texture(resolved, srgb, pixels_left);
-  } catch (const InputError& e) {
-    json::fail(path, e.what());
-  }
-  texture.name = name;
-  return texture;
+  return {name, resolved, srgb, path};
+}
+
+Texture read_texture(const Json& value, const std::string& name, const std::string& path,
+                     const std::filesystem::path& base_dir, size_t pixels_left) {
+  return std::move(load_textures({read_texture_request(value, name, path, base_dir)}, pixels_left).front());
 }
 
 size_t texture_pixels_left(const Scene& scene) {
@@ -182,15 +180,17 @@ namespace {
 
 using namespace loader;
 
-// Every texture shares one pixel budget (limits::kMaxTexturePixels).
+// Every texture shares one pixel budget (limits::kMaxTexturePixels); a file named twice counts once.
 void read_textures(const Json* value, const std::filesystem::path& base_dir, Scene& scene,
                    std::map<std::string, int>& by_name) {
   if (!value) return;
   if (!value->is_object()) json::fail("textures", "must be an object of name: path, got " + json::describe(*value));
-  for (auto it = value->begin(); it != value->end(); ++it) {
-    const std::string path = json::child_path("textures", it.key());
-    Texture texture = read_texture(it.value(), it.key(), path, base_dir, texture_pixels_left(scene));
-    by_name[it.key()] = static_cast<int>(scene.textures.size());
+  // All at once: every header and the budget are checked before any file is decoded.
+  std::vector<TextureRequest> requests;
+  for (auto it = value->begin(); it != value->end(); ++it)
+    requests.push_back(read_texture_request(it.value(), it.key(), json::child_path("textures", it.key()), base_dir));
+  for (Texture& texture : load_textures(requests, texture_pixels_left(scene))) {
+    by_name[texture.name] = static_cast<int>(scene.textures.size());
     scene.textures.push_back(std::move(texture));
   }
 }

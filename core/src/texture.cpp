@@ -1,8 +1,15 @@
 #include "prism/texture.hpp"
 
-#include <algorithm>
-#include <cmath>
+#include <sys/stat.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <compare>
+#include <cstring>
+#include <map>
+
+#include "json_reader.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
 
@@ -51,8 +58,7 @@ double linear_to_srgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * st
 namespace {
 
 // Refuses a texture whose header says it is larger than what is left of the scene's pixel budget.
-void check_texture_size(const std::filesystem::path& path, size_t pixels_left) {
-  const ImageFile header = read_image_header(path);
+void check_texture_size(const std::filesystem::path& path, const ImageFile& header, size_t pixels_left) {
   const size_t pixels = size_t(header.width) * size_t(header.height);
   if (pixels <= pixels_left) return;
   const std::string limit = std::to_string(limits::kMaxTexturePixels) + " pixels all textures of a scene may hold";
@@ -63,28 +69,134 @@ void check_texture_size(const std::filesystem::path& path, size_t pixels_left) {
                    " = " + std::to_string(pixels) + " pixels, more than " + left);
 }
 
+// Decoded texel by texel as rows arrive, so memory grows with the pixels
+// actually in the file, and a stop request ends the decoding within a row.
+class TexelDecoder {
+ public:
+  TexelDecoder(const std::filesystem::path& path, bool srgb) : path_(path), srgb_(srgb) { texture_.path = path; }
+
+  void header(const ImageFile& header) {
+    texture_.width = header.width;
+    texture_.height = header.height;
+    channels_ = std::min(header.channels, 4);
+    names_ = header.channel_names;
+    // 8- and 16-bit colour is sRGB-encoded unless the scene says otherwise; float formats are linear.
+    const bool integer_format = header.format == PixelFormat::UInt8 || header.format == PixelFormat::UInt16;
+    finite_check_ = !integer_format;
+    if (srgb_ && integer_format) build_srgb_table(header.format == PixelFormat::UInt8 ? 255 : 65535);
+    texture_.texels.reserve(size_t(header.width) * size_t(header.height));
+  }
+
+  void row(int y, const float* values) {
+    const int colour_channels = (channels_ == 2 || channels_ == 4) ? channels_ - 1 : channels_;
+    for (int x = 0; x < texture_.width; ++x) {
+      float p[4];
+      std::copy_n(values + size_t(x) * size_t(channels_), channels_, p);
+      if (!srgb_table_.empty())
+        for (int c = 0; c < colour_channels; ++c) p[c] = srgb_table_[size_t(std::lround(p[c] * max_code_))];
+      if (finite_check_) refuse_non_finite(x, y, p);
+      texture_.texels.push_back(expand_channels(p, channels_));
+    }
+  }
+
+  Texture take() { return std::move(texture_); }
+
+ private:
+  // Each code's value as the decoder gives it (code * (1 / max) in float), then the curve in double.
+  void build_srgb_table(int max_code) {
+    max_code_ = float(max_code);
+    srgb_table_.resize(size_t(max_code) + 1);
+    for (int code = 0; code <= max_code; ++code)
+      srgb_table_[size_t(code)] = static_cast<float>(srgb_to_linear(double(float(code) * (1.0f / float(max_code)))));
+  }
+
+  // A NaN or infinity would spread through every shading sum it touches.
+  void refuse_non_finite(int x, int y, const float* p) const {
+    for (int c = 0; c < channels_; ++c) {
+      if (std::isfinite(p[c])) continue;
+      const std::string value = std::isnan(p[c]) ? "NaN" : (p[c] > 0 ? "+Inf" : "-Inf");
+      const std::string channel = size_t(c) < names_.size() ? names_[size_t(c)] : std::to_string(c);
+      throw InputError("'" + path_.string() + "': texel (" + std::to_string(x) + ", " + std::to_string(y) +
+                       ") channel " + channel + " is " + value + "; texture values must be finite");
+    }
+  }
+
+  std::filesystem::path path_;
+  bool srgb_;
+  Texture texture_;
+  int channels_ = 0;
+  std::vector<std::string> names_;
+  bool finite_check_ = false;
+  float max_code_ = 0;
+  std::vector<float> srgb_table_;
+};
+
+Texture decode_texture(const std::filesystem::path& path, bool srgb, size_t max_pixels) {
+  TexelDecoder decoder(path, srgb);
+  read_image_rows(path, max_pixels, 4,  // channels past RGBA are never used
+                  {[&](const ImageFile& header) { decoder.header(header); },
+                   [&](int y, const float* values) { decoder.row(y, values); }});
+  return decoder.take();
+}
+
+// The same file read for the same colour space: decoded once however many names it has.
+struct TextureKey {
+  dev_t device;
+  ino_t inode;
+  bool srgb;
+  auto operator<=>(const TextureKey&) const = default;
+};
+
+TextureKey key_of(const std::filesystem::path& file, bool srgb) {
+  struct stat info {};
+  if (::stat(file.c_str(), &info) != 0) throw InputError("cannot read image '" + file.string() + "': " + std::strerror(errno));
+  return {info.st_dev, info.st_ino, srgb};
+}
+
+template <typename Fn>
+auto leading_with(const std::string& path, Fn fn) {
+  try {
+    return fn();
+  } catch (const InputError& e) {
+    json::fail(path, e.what());
+  }
+}
+
 }  // namespace
 
 Texture load_texture(const std::filesystem::path& path, bool srgb, size_t pixels_left) {
-  check_texture_size(path, pixels_left);
-  ImageFile file = read_image_file(path, pixels_left, 4);  // channels past RGBA are never used
-  const int channels = std::min(file.channels, 4);
-  // 8- and 16-bit colour is sRGB-encoded unless the scene says otherwise; float formats are linear.
-  const bool integer_format = file.format == PixelFormat::UInt8 || file.format == PixelFormat::UInt16;
-  const bool decode = srgb && integer_format;
-  const int colour_channels = (channels == 2 || channels == 4) ? channels - 1 : channels;
-  Texture texture;
-  texture.path = path;
-  texture.width = file.width;
-  texture.height = file.height;
-  texture.texels.resize(size_t(file.width) * file.height);
-  for (size_t i = 0; i < texture.texels.size(); ++i) {
-    float* p = &file.pixels[i * size_t(file.channels)];
-    if (decode)
-      for (int c = 0; c < colour_channels; ++c) p[c] = static_cast<float>(srgb_to_linear(p[c]));
-    texture.texels[i] = expand_channels(p, channels);
+  check_texture_size(path, read_image_header(path), pixels_left);
+  return decode_texture(path, srgb, pixels_left);
+}
+
+std::vector<Texture> load_textures(const std::vector<TextureRequest>& requests, size_t pixels_left) {
+  // Every header and the budget first: nothing is decoded for a scene whose textures cannot all fit.
+  std::vector<TextureKey> keys;
+  std::map<TextureKey, size_t> first_of;  // key -> index of the request that decodes it
+  for (size_t i = 0; i < requests.size(); ++i) {
+    const TextureRequest& r = requests[i];
+    keys.push_back(leading_with(r.path, [&] {
+      const ImageFile header = read_image_header(r.file);
+      const TextureKey key = key_of(r.file, r.srgb);
+      if (!first_of.count(key)) {
+        check_texture_size(r.file, header, pixels_left);
+        pixels_left -= size_t(header.width) * size_t(header.height);
+        first_of[key] = i;
+      }
+      return key;
+    }));
   }
-  return texture;
+  std::vector<Texture> textures;
+  for (size_t i = 0; i < requests.size(); ++i) {
+    const TextureRequest& r = requests[i];
+    const size_t first = first_of.at(keys[i]);
+    Texture texture = first == i ? leading_with(r.path, [&] { return decode_texture(r.file, r.srgb, limits::kMaxTexturePixels); })
+                                 : textures[first];
+    texture.name = r.name;
+    texture.path = r.file;
+    textures.push_back(std::move(texture));
+  }
+  return textures;
 }
 
 glm::dvec4 sample_texture(const Texture& texture, glm::dvec2 uv) {

@@ -1,11 +1,13 @@
-// Reading and writing image files (PNG, JPG, EXR, ... through OpenImageIO).
-// OpenImageIO and its ~250 dependent libraries take about a second to load,
-// so they live in a module (libprism_oiio.so beside libprism_core.so) that is
-// loaded the first time an image is read or written: `prism trace`, `list`
-// and every run that fails validation before touching an image start fast.
+// Reading and writing image files. PNG, JPEG and OpenEXR go through libpng,
+// libjpeg-turbo and OpenEXR directly. Every other format, and comparisons,
+// go through OpenImageIO, whose ~250 dependent libraries take more than half
+// a second to load: it lives in a module (libprism_oiio.so beside
+// libprism_core.so) loaded the first time it is needed, so `prism render` to
+// PNG or EXR, `trace` and `list` never load it.
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -41,12 +43,30 @@ ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, floa
 ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels = size_t(1) << 28,
                           int max_channels = std::numeric_limits<int>::max());
 
+// Receives a decoded image one row at a time, top to bottom (see read_image_rows).
+struct ImageRowSink {
+  // Once, before the first row: size, channels, names and format (no pixels).
+  std::function<void(const ImageFile& header)> header;
+  // `values`: width * channels floats, integer formats scaled to [0, 1].
+  std::function<void(int y, const float* values)> row;
+};
+
+// read_image_file without the whole image in memory: refuses images over
+// `max_pixels` from their header, then hands the rows to `sink` as they are
+// decoded, checking the stop request (prism::cancel) as it goes. Throws
+// InputError, or what the sink throws.
+void read_image_rows(const std::filesystem::path& file, size_t max_pixels, int max_channels, const ImageRowSink& sink);
+
 // The size, channel count, channel names and format from the file's header,
 // without its pixels (`pixels` stays empty). Throws InputError.
 ImageFile read_image_header(const std::filesystem::path& file);
 
 // Writes `image` stored as `storage` (PNG: UInt8/UInt16, EXR: Half/Float),
-// in place (callers that need atomicity write to a temporary name). Throws RuntimeError.
+// atomically (see write_file_atomically in image_io.hpp). Throws RuntimeError.
 void write_image_file(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
+
+// Whether OpenImageIO (libprism_oiio.so or libOpenImageIO) is mapped into
+// this process, from /proc/self/maps: `prism render --stats` reports it.
+bool openimageio_loaded();
 
 }  // namespace prism

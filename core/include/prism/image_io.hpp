@@ -1,18 +1,49 @@
-// Image output through OpenImageIO. Files are written to a temporary name in
-// the target folder and renamed when complete, so a failed write never
-// leaves a partial file or clobbers an old one.
+// Image and text output. Every file is written to a temporary name beside
+// its target, checked write by write, flushed to disk (fsync) and only then
+// renamed over the target: a failed write (a full disk, a cancel request)
+// never leaves a partial file or clobbers an old one, and the error names
+// the file the caller asked for. Replacing a file keeps its permissions; a
+// symbolic link is written through (the temporary goes beside the link's
+// target and replaces the target), as cp does.
 #pragma once
 
 #include <filesystem>
+#include <functional>
+#include <string>
 
 #include "prism/backend.hpp"
 
 namespace prism {
 
+// A file completely written (and fsynced) under a temporary name, not yet in
+// place: stage several, then commit them together, so a failure while
+// writing the second leaves the first's older file as it was.
+class StagedFile {
+ public:
+  // Calls `write(temporary, fd)` to fill the temporary (fd is open for
+  // writing; `write` may instead write by name, in place). RuntimeError
+  // naming `file` when anything fails; nothing is left behind then.
+  StagedFile(const std::filesystem::path& file,
+             const std::function<void(const std::filesystem::path& temporary, int fd)>& write);
+  StagedFile(StagedFile&& other) noexcept;
+  StagedFile& operator=(StagedFile&&) = delete;
+  StagedFile(const StagedFile&) = delete;
+  ~StagedFile();  // removes the temporary unless it was committed
+
+  // Renames the temporary over the target. Throws Cancelled when a stop was
+  // requested (the older file stays), RuntimeError when the rename fails.
+  void commit();
+
+ private:
+  std::filesystem::path file_, target_, temporary_;
+  bool committed_ = false;
+};
+
 // .png: 8-bit sRGB of the clamped values; .exr: linear float RGB plus the
 // `id` / `path` channels the image carries. Throws InputError for an
 // unsupported extension and RuntimeError when the file cannot be written.
 void write_image(const Image& image, const std::filesystem::path& file);
+StagedFile stage_image(const Image& image, const std::filesystem::path& file);
 
 // Checked before rendering starts: InputError unless `file` has one of
 // `extensions`; RuntimeError unless its folder exists and is writable.
@@ -20,5 +51,10 @@ void check_output_path(const std::filesystem::path& file, const std::vector<std:
 
 // Writes `contents` to `file` atomically (temporary name, then rename).
 void write_text_file_atomically(const std::filesystem::path& file, const std::string& contents);
+StagedFile stage_text_file(const std::filesystem::path& file, const std::string& contents);
+
+// StagedFile(file, write).commit().
+void write_file_atomically(const std::filesystem::path& file,
+                           const std::function<void(const std::filesystem::path& temporary, int fd)>& write);
 
 }  // namespace prism

@@ -18,6 +18,24 @@ namespace prism {
 Texture load_texture(const std::filesystem::path& path, bool srgb,
                      size_t pixels_left = limits::kMaxTexturePixels);
 
+// One texture a scene names: its file, whether its 8/16-bit colour is sRGB,
+// and what its errors lead with (its JSON path in a scene file).
+struct TextureRequest {
+  std::string name;
+  std::filesystem::path file;
+  bool srgb = true;
+  std::string path;
+};
+
+// A scene's textures, in the order of `requests`. Reads every header first
+// and refuses the set when its distinct files (one file read with one srgb
+// setting counts once, however many names it has) hold more than
+// `pixels_left` pixels together, before decoding anything; then decodes
+// each distinct file once. Refuses NaN and infinite texels, naming the first.
+// InputError, led by the failing request's `path`.
+std::vector<Texture> load_textures(const std::vector<TextureRequest>& requests,
+                                   size_t pixels_left = limits::kMaxTexturePixels);
+
 // Bilinear, repeat wrap; v = 0 is the top row.
 glm::dvec4 sample_texture(const Texture& texture, glm::dvec2 uv);
 

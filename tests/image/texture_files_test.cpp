@@ -1,0 +1,122 @@
+// A scene's textures: headers and the pixel budget before any decoding, one
+// decoding per distinct file, the stop request inside decoding, and texels
+// that must be finite.
+#include <gtest/gtest.h>
+
+#include <csignal>
+#include <limits>
+
+#include "prism/cancel.hpp"
+#include "prism/errors.hpp"
+#include "prism/image_file.hpp"
+#include "prism/registry.hpp"
+#include "prism/scene_loader.hpp"
+#include "prism/texture.hpp"
+#include "test_support.hpp"
+
+namespace prism {
+namespace {
+
+namespace fs = std::filesystem;
+
+template <typename Fn>
+std::string error_of(Fn fn) {
+  try {
+    fn();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+class TextureFiles : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = test::fresh_temp_dir(); }
+  void TearDown() override { clear_cancel(); }
+
+  fs::path write_rgb(const std::string& name, int w, int h) {
+    ImageFile image{w, h, 3, {}, PixelFormat::UInt8, std::vector<float>(size_t(w) * h * 3, 0.5f)};
+    write_image_file(dir_ / name, image, PixelFormat::UInt8);
+    return dir_ / name;
+  }
+
+  std::string scene_with_textures(const std::string& textures) const {
+    return R"({"prism": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]}, "textures": )" + textures + "}";
+  }
+
+  Scene load(const std::string& text) {
+    Registry registry;
+    return load_scene_from_string(text, dir_, registry, "scene.json");
+  }
+
+  fs::path dir_;
+};
+
+// The file is 69 bytes (8 signature + 25 IHDR + 24 IDAT + 12 IEND); zlib
+// expands at most 1032:1, so it cannot hold 16384 rows of 49152 bytes: refused
+// before a row is decoded (it used to decode for 20 s into 3.2 GB).
+TEST_F(TextureFiles, AHeaderClaimingMoreThanTheFileHoldsIsRefusedBeforeDecoding) {
+  const fs::path file = dir_ / "claims.png";
+  test::write_file(file, test::png_claiming_size(16384, 16384));
+  EXPECT_EQ(error_of([&] { load_texture(file, true); }),
+            "cannot read image '" + file.string() +
+                "': cannot decode: the file's 69 bytes cannot hold 16384x16384 pixels (truncated, or a false header)");
+}
+
+// A 4x4 file under two names (one through a symbolic link) counts 16 pixels
+// of the budget, not 32, and both names get its texels.
+TEST_F(TextureFiles, AFileUnderSeveralNamesCountsOnce) {
+  const fs::path file = write_rgb("a.png", 4, 4);
+  fs::create_symlink(file, dir_ / "alias.png");
+  const std::vector<TextureRequest> requests = {
+      {"a", file, true, "textures.a"}, {"b", file, true, "textures.b"}, {"c", dir_ / "alias.png", true, "textures.c"}};
+  const std::vector<Texture> textures = load_textures(requests, 16);
+  ASSERT_EQ(textures.size(), 3u);
+  EXPECT_EQ(textures[1].name, "b");
+  EXPECT_EQ(textures[2].texels, textures[0].texels);
+  EXPECT_EQ(textures[2].texels.size(), 16u);
+}
+
+TEST_F(TextureFiles, DistinctFilesShareTheBudget) {
+  const fs::path a = write_rgb("a.png", 4, 4), b = write_rgb("b.png", 4, 4);
+  EXPECT_EQ(error_of([&] { load_textures({{"a", a, true, "textures.a"}, {"b", b, true, "textures.b"}}, 16); }),
+            "textures.b: '" + b.string() +
+                "' is 4x4 = 16 pixels, more than the 0 left of the 268435456 pixels all textures of a scene may hold");
+}
+
+// The first texture's pixel data is broken; the second is over the limit by
+// its header. The budget is checked first, so the error is about the second:
+// nothing was decoded.
+TEST_F(TextureFiles, EveryHeaderIsCheckedBeforeAnyFileIsDecoded) {
+  const std::string whole = test::read_file(write_rgb("whole.png", 64, 64));
+  test::write_file(dir_ / "cut.png", whole.substr(0, whole.size() - 40));
+  test::write_file(dir_ / "huge.png", test::png_claiming_size(16385, 16385));
+  EXPECT_EQ(error_of([&] { load(scene_with_textures(R"({"a": "cut.png", "b": "huge.png"})")); }),
+            "scene.json: textures.b: '" + (dir_ / "huge.png").string() +
+                "' is 16385x16385 = 268468225 pixels, more than the 268431360 left of the 268435456 pixels all "
+                "textures of a scene may hold");
+}
+
+TEST_F(TextureFiles, AStopRequestEndsDecoding) {
+  const fs::path file = write_rgb("a.png", 4, 4);
+  request_cancel(SIGINT);
+  EXPECT_THROW(load_texture(file, true), Cancelled);
+}
+
+// NaN at (1, 0) in G; +Inf at (0, 1) in R comes later and is not the one named.
+TEST_F(TextureFiles, NonFiniteTexelsAreRefusedNamingTheTextureAndThePixel) {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const ImageFile image{2, 2, 3, {}, PixelFormat::Float, {0, 0, 0, 1, nan, 1, inf, 0, 0, 1, 1, 1}};
+  write_image_file(dir_ / "bad.exr", image, PixelFormat::Float);
+  EXPECT_EQ(error_of([&] { load(scene_with_textures(R"({"sky": {"path": "bad.exr"}})")); }),
+            "scene.json: textures.sky: '" + (dir_ / "bad.exr").string() +
+                "': texel (1, 0) channel G is NaN; texture values must be finite");
+  const ImageFile infinite{1, 1, 3, {}, PixelFormat::Half, {0, 0, -inf}};
+  write_image_file(dir_ / "inf.exr", infinite, PixelFormat::Half);
+  EXPECT_EQ(error_of([&] { load(scene_with_textures(R"({"t": "inf.exr"})")); }),
+            "scene.json: textures.t: '" + (dir_ / "inf.exr").string() +
+                "': texel (0, 0) channel B is -Inf; texture values must be finite");
+}
+
+}  // namespace
+}  // namespace prism
