@@ -22,41 +22,40 @@ namespace pybind11::detail {
 // glm::dvec2 / dvec3 from any sequence of that many numbers (a tuple, a
 // list, a NumPy array); to Python as a tuple.
 template <class Vec>
-struct glm_vector_caster {
-  Vec value{};
-  bool load(handle source, bool) {
-    if (!source || PyUnicode_Check(source.ptr()) || !PySequence_Check(source.ptr())) return false;
-    const auto items = reinterpret_borrow<sequence>(source);
-    if (items.size() != size_t(Vec::length())) return false;
-    for (int i = 0; i < Vec::length(); ++i) {
-      const object item = items[size_t(i)];
-      if (!PyNumber_Check(item.ptr())) return false;
-      value[i] = PyFloat_AsDouble(item.ptr());
-      if (PyErr_Occurred()) {
-        PyErr_Clear();
-        return false;
-      }
+bool load_glm_vector(handle source, Vec& value) {
+  if (!source || PyUnicode_Check(source.ptr()) || !PySequence_Check(source.ptr())) return false;
+  const auto items = reinterpret_borrow<sequence>(source);
+  if (items.size() != size_t(Vec::length())) return false;
+  for (int i = 0; i < Vec::length(); ++i) {
+    const object item = items[size_t(i)];
+    if (!PyNumber_Check(item.ptr())) return false;
+    value[i] = PyFloat_AsDouble(item.ptr());
+    if (PyErr_Occurred()) {
+      PyErr_Clear();
+      return false;
     }
-    return true;
   }
-  static handle cast(const Vec& v, return_value_policy, handle) {
-    tuple out(size_t(Vec::length()));
-    for (int i = 0; i < Vec::length(); ++i) out[size_t(i)] = float_(v[i]);
-    return out.release();
-  }
-  operator Vec&() { return value; }
-  operator Vec*() { return &value; }
-  template <class T>
-  using cast_op_type = movable_cast_op_type<T>;
-};
+  return true;
+}
+
+template <class Vec>
+handle cast_glm_vector(const Vec& v) {
+  tuple out(size_t(Vec::length()));
+  for (int i = 0; i < Vec::length(); ++i) out[size_t(i)] = float_(v[i]);
+  return out.release();
+}
 
 template <>
-struct type_caster<glm::dvec3> : glm_vector_caster<glm::dvec3> {
-  static constexpr auto name = const_name("tuple[float, float, float]");
+struct type_caster<glm::dvec3> {
+  PYBIND11_TYPE_CASTER(glm::dvec3, const_name("tuple[float, float, float]"));
+  bool load(handle source, bool) { return load_glm_vector(source, value); }
+  static handle cast(const glm::dvec3& v, return_value_policy, handle) { return cast_glm_vector(v); }
 };
 template <>
-struct type_caster<glm::dvec2> : glm_vector_caster<glm::dvec2> {
-  static constexpr auto name = const_name("tuple[float, float]");
+struct type_caster<glm::dvec2> {
+  PYBIND11_TYPE_CASTER(glm::dvec2, const_name("tuple[float, float]"));
+  bool load(handle source, bool) { return load_glm_vector(source, value); }
+  static handle cast(const glm::dvec2& v, return_value_policy, handle) { return cast_glm_vector(v); }
 };
 
 }  // namespace pybind11::detail

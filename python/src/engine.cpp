@@ -115,13 +115,13 @@ Engine serves any number of scenes and renderers.)")
       .def("primitive_types", &Engine::primitive_types, "The primitive plugins found (sphere, plane, torus, ...).")
       .def("auto_backend", &Engine::auto_backend, R"(The backend "auto" picks: the fastest that can run here.)")
       .def("load_scene", &load_scene, py::arg("source"), py::arg("base_dir") = py::none(),
-           R"(A scene from a scene file (a path) or from a dict with the scene format's keys.
+           R"doc(A scene from a scene file (a path) or from a dict with the scene format's keys.
 
 The dict goes through the scene loader exactly as a file does: the same
 checks and the same messages. Relative texture paths in a dict resolve
 against `base_dir` (default: the current folder); in a file, against the
 file's folder. Raises SceneError, whose `path` is the JSON path of what is
-wrong: SceneError("<dict>: objects[0].raduis: unknown key (did you mean 'radius'?)").)")
+wrong: SceneError("<dict>: objects[0].raduis: unknown key (did you mean 'radius'?)").)doc")
       .def(
           "new_scene",
           [](const std::shared_ptr<Engine>& engine) {

@@ -89,7 +89,8 @@ std::vector<TraceQuery> queries_of(const Rays& origins, const Rays& directions, 
     const std::string where = "rays[" + std::to_string(i) + "]";
     const double ti = tmin.ndim() == 0 ? t[0] : t[i];
     const glm::dvec3 origin(o(i, 0), o(i, 1), o(i, 2)), direction(d(i, 0), d(i, 1), d(i, 2));
-    if (!std::isfinite(ti) || !glm::all(glm::isfinite(origin)) || !glm::all(glm::isfinite(direction)))
+    const auto finite = [](const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (!std::isfinite(ti) || !finite(origin) || !finite(direction))
       throw py::value_error(where + ": not a finite number");
     queries.push_back(make_trace_query(origin, direction, ti, where));
   }

@@ -55,7 +55,7 @@ def test_backends_report_what_prism_list_reports(engine):
         if not line.startswith(" "):
             section = line
             continue
-        match = re.match(r"  (\S+)\s+\S+ (usable|not usable here): (.*) \(", line)
+        match = re.match(r"  (\S+)\s+.*? (usable|not usable here): (.*) \(", line)
         if section == "backends:" and match:
             listed[match.group(1)] = (match.group(2) == "usable", match.group(3))
     found = {b.name: (b.available, b.reason) for b in engine.backends()}
