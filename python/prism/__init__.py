@@ -55,11 +55,3 @@ __all__ = [
     "compare",
     "read_image",
 ]
-
-# Classes and functions read as prism.X in help() and tracebacks, not prism._prism.X.
-for _name in __all__:
-    try:
-        globals()[_name].__module__ = __name__
-    except (AttributeError, TypeError):
-        pass
-del _name

@@ -69,9 +69,13 @@ void bind_errors(py::module_& m) {
 PYBIND11_MODULE(_prism, m) {
   using namespace prism::python;
   m.doc() = "Prism, a ray tracer with interchangeable backends: scenes, renders into NumPy arrays, conformance metrics.";
+  // Types are named prism.X (in signatures, help() and tracebacks), as the package re-exports them.
+  const py::object module_name = m.attr("__name__");
+  m.attr("__name__") = "prism";
   bind_errors(m);
   bind_engine(m);
   bind_scene(m);
   bind_renderer(m);
   bind_compare(m);
+  m.attr("__name__") = module_name;
 }

@@ -4,6 +4,7 @@ The `backend` fixture runs a test once per backend found, and once per name
 in PRISM_REQUIRE_BACKENDS: as in the C++ tests (tests/support), a backend
 that cannot run here is skipped unless it is required, and then it fails.
 """
+import functools
 import os
 import pathlib
 import subprocess
@@ -18,7 +19,12 @@ CLI = os.environ.get("PRISM_CLI", str(BUILD_DIR / "bin" / "prism"))
 SHOWCASE = SOURCE_DIR / "scenes" / "showcase.json"
 
 _engine = prism.Engine()
-_found = {b.name: b for b in _engine.backends()}  # probing a GPU takes a while: once per process
+
+
+@functools.cache
+def found_backends():
+    """Every backend found, by name (probing a GPU takes a while: once per process)."""
+    return {b.name: b for b in _engine.backends()}
 
 
 def required_backends():
@@ -27,7 +33,7 @@ def required_backends():
 
 
 def _backend_names():
-    return sorted(set(_found) | set(required_backends()))
+    return sorted(set(found_backends()) | set(required_backends()))
 
 
 def pytest_generate_tests(metafunc):
@@ -44,7 +50,7 @@ def engine():
 def backend(request):
     """A backend's name when it can run here; skips (or fails when required) otherwise."""
     name = request.param
-    info = _found.get(name)
+    info = found_backends().get(name)
     why = "is not found" if info is None else None if info.available else info.reason
     if why is None:
         return name

@@ -58,3 +58,32 @@ def test_ctrl_c_cancels_a_trace(engine):
         renderer.trace(origins, directions)
     sender.join()
     assert renderer.trace([[0, 0, 10]], [[0, 0, -1]]).id[0] == 1025  # the sphere at (0, 0, -5)
+
+
+def test_python_runs_during_a_render_and_cannot_edit_its_scene(engine):
+    scene = engine.load_scene(SHOWCASE)
+    renderer = engine.renderer(scene, "reference")
+    outcome = []
+
+    def render():
+        try:
+            renderer.render(width=1920, height=1080, spp=256)
+            outcome.append("finished")
+        except KeyboardInterrupt:
+            outcome.append("interrupted")
+
+    worker = threading.Thread(target=render)
+    worker.start()
+    refused = None
+    deadline = time.monotonic() + 60
+    while refused is None and time.monotonic() < deadline:  # this loop runs only because the GIL is free
+        try:
+            scene.set_background((0.1, 0.2, 0.3))  # allowed until the render has started
+            time.sleep(0.01)
+        except RuntimeError as error:
+            refused = str(error)
+    signal.pthread_kill(worker.ident, signal.SIGINT)
+    worker.join()
+    assert refused == "the scene is being rendered on another thread; edit it when the render has returned"
+    assert outcome == ["interrupted"]
+    scene.set_background((0, 0, 0))  # editable again
