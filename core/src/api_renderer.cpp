@@ -79,10 +79,7 @@ void Renderer::sync(const LiveScene& scene) {
   impl_->seen_revision = s.revision;
 }
 
-Image Renderer::render(const LiveScene& scene) {
-  sync(scene);
-  return impl_->opened.backend->render(settings_for(scene.scene()));
-}
+Image Renderer::render(const LiveScene& scene) { return render(scene, RenderOptions{}); }
 
 Image Renderer::render(const LiveScene& scene, const RenderOptions& options) {
   RenderSettings settings = settings_for(scene.scene());
