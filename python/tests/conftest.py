@@ -38,7 +38,7 @@ def _backend_names():
 
 def pytest_generate_tests(metafunc):
     if "backend" in metafunc.fixturenames:
-        metafunc.parametrize("backend", _backend_names())
+        metafunc.parametrize("backend", _backend_names(), indirect=True)
 
 
 @pytest.fixture(scope="session")
