@@ -15,6 +15,7 @@ packages=(
   povray
   clang libclang-rt-14-dev
   libopenmpi-dev openmpi-bin
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 missing=()
 for p in "${packages[@]}"; do

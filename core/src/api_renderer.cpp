@@ -7,6 +7,7 @@
 #include "prism/errors.hpp"
 #include "prism/image_io.hpp"
 #include "prism/registry.hpp"
+#include "prism/scene_loader.hpp"
 
 namespace prism {
 
@@ -78,9 +79,19 @@ void Renderer::sync(const LiveScene& scene) {
   impl_->seen_revision = s.revision;
 }
 
-Image Renderer::render(const LiveScene& scene) {
+Image Renderer::render(const LiveScene& scene) { return render(scene, RenderOptions{}); }
+
+Image Renderer::render(const LiveScene& scene, const RenderOptions& options) {
+  RenderSettings settings = settings_for(scene.scene());
+  settings.image.width = options.width.value_or(settings.image.width);
+  settings.image.height = options.height.value_or(settings.image.height);
+  settings.image.spp = options.spp.value_or(settings.image.spp);
+  settings.image.max_depth = options.max_depth.value_or(settings.image.max_depth);
+  check_image_settings(settings.image, "render().");
+  settings.aov_id = options.aov_id;
+  settings.aov_path = options.aov_path;
   sync(scene);
-  return impl_->opened.backend->render(settings_for(scene.scene()));
+  return impl_->opened.backend->render(settings);
 }
 
 void Renderer::render_into(const LiveScene& scene, std::span<float> rgb) {

@@ -173,12 +173,16 @@ LiveScene::LiveScene(LiveScene&&) noexcept = default;
 LiveScene& LiveScene::operator=(LiveScene&&) noexcept = default;
 
 LiveScene LiveScene::load(Engine& engine, const std::filesystem::path& file) {
-  const std::string text = read_scene_text(file);
+  return load_json(engine, read_scene_text(file), file.parent_path(), file.string());
+}
+
+LiveScene LiveScene::load_json(Engine& engine, const std::string& text, const std::filesystem::path& base_dir,
+                               const std::string& source_name) {
   LiveScene live(engine);
   State& s = *live.state_;
-  s.scene = load_scene_from_string(text, file.parent_path(), engine.registry(), file.string());
-  // The file has just been read cleanly: its fragments are valid as they stand.
-  const Json root = json::parse_strict(text, file.string());
+  s.scene = load_scene_from_string(text, base_dir, engine.registry(), source_name);
+  // The text has just been read cleanly: its fragments are valid as they stand.
+  const Json root = json::parse_strict(text, source_name);
   s.camera_doc = root.at("camera");
   s.image_doc = image_json(s.scene.image);
   s.background_doc = root.value("background", Json{{"color", Json::array({0, 0, 0})}});

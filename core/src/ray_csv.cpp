@@ -50,13 +50,18 @@ std::vector<double> parse_fields(const std::string& line, const std::string& whe
 }
 
 TraceQuery ray_of(const std::vector<double>& v, const std::string& where) {
-  const glm::dvec3 dir = rescaled({v[3], v[4], v[5]});  // so that 1e-160 and 1e200 normalize too
-  const double length = glm::length(dir);
-  if (!(length > 0) || !std::isfinite(length)) throw InputError(where + ": the direction is zero");
-  return {{v[0], v[1], v[2]}, dir / length, v.size() == 7 ? v[6] : 0.0};
+  return make_trace_query({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v.size() == 7 ? v[6] : 0.0, where);
 }
 
 }  // namespace
+
+TraceQuery make_trace_query(const glm::dvec3& origin, const glm::dvec3& direction, double tmin,
+                            const std::string& where) {
+  const glm::dvec3 dir = rescaled(direction);  // so that 1e-160 and 1e200 normalize too
+  const double length = glm::length(dir);
+  if (!(length > 0) || !std::isfinite(length)) throw InputError(where + ": the direction is zero");
+  return {origin, dir / length, tmin};
+}
 
 std::vector<TraceQuery> parse_ray_csv(std::istream& in, const std::string& source_name) {
   std::vector<TraceQuery> rays;

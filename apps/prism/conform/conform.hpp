@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "prism/backend.hpp"
+#include "prism/conform_metrics.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene.hpp"
 
@@ -27,15 +28,6 @@ struct Caps {
   double stable_over_gpu = 0.0005;         // fraction of stable pixels over: float-shading backends
   double stable_over_double = 0.0;         // ... backends whose info.precision is "double"
   double all_over = 0.005;                 // fraction of all pixels over, any backend
-};
-
-// One image against another (same size), as OpenImageIO's compare reports it.
-struct Metrics {
-  double mean_error = 0, rms_error = 0, psnr = 0, max_error = 0;
-  long pixels = 0, pixels_over = 0;
-  long stable_pixels = 0, stable_over = 0;
-  long edge_pixels = 0, edge_over = 0;
-  long nonfinite = 0;  // NaN or Inf pixels in the image under test
 };
 
 // Over-threshold pixels attributed to an object: the share of them whose
@@ -117,10 +109,8 @@ struct Options {
 // InputError for a bad scene or an unknown backend name.
 RunResult run_conformance(Registry& registry, const Options& options, const std::function<void(const std::string&)>& log);
 
-// The parts of the comparison, exposed for tests.
-// 1 where the 3x3 neighbourhood (inside the image) shares the centre's path signature.
-std::vector<uint8_t> stable_pixels(const Image& reference);
-Metrics measure(const Image& reference, const std::vector<uint8_t>& stable, const Image& image, float threshold);
+// The parts of the comparison, exposed for tests (stable_pixels and measure
+// are the core's, prism/conform_metrics.hpp).
 std::vector<Attribution> attribute(const Scene& scene, const Image& reference, const Image& image, float threshold);
 // Empty when the metrics meet the caps, else what broke them.
 std::string verdict(const Metrics& m, const Caps& caps, bool double_precision);

@@ -155,6 +155,11 @@ class LiveScene {
   explicit LiveScene(Engine& engine);
   // A scene file; its objects get ids in file order, its lights too.
   static LiveScene load(Engine& engine, const std::filesystem::path& file);
+  // The same from a scene file's text (e.g. a Python dict turned into JSON);
+  // relative texture paths resolve against `base_dir`, and errors begin with
+  // `source_name` as they begin with the file's name.
+  static LiveScene load_json(Engine& engine, const std::string& json, const std::filesystem::path& base_dir,
+                             const std::string& source_name = "<string>");
   ~LiveScene();
   LiveScene(LiveScene&&) noexcept;
   LiveScene& operator=(LiveScene&&) noexcept;
@@ -222,6 +227,14 @@ struct UpdateCounters {
   uint64_t kernel_builds = 0;    // GPU kernels generated and built
 };
 
+// What one render may change from the scene's image settings, and the AOVs
+// it adds to the Image (as `prism render --aov id,path` writes them).
+struct RenderOptions {
+  std::optional<int> width, height, spp, max_depth;  // unset: the scene's
+  bool aov_id = false;    // Image::id: the object seen in each pixel
+  bool aov_path = false;  // Image::path: each pixel's path signature (sample 0)
+};
+
 // One backend, prepared for one scene at a time. Each render brings the
 // backend up to date with the scene first.
 class Renderer {
@@ -235,6 +248,9 @@ class Renderer {
 
   // The scene's camera and image settings.
   Image render(const LiveScene& scene);
+  // The same with `options` applied; an override out of range is an InputError
+  // ("render().width: must be in [1, 16384], got 0").
+  Image render(const LiveScene& scene, const RenderOptions& options);
   // The same into a caller-owned buffer of width * height * 3 floats (linear RGB, row 0 at the top).
   void render_into(const LiveScene& scene, std::span<float> rgb);
   // The same to an image file (.png, .exr, ... by extension), written atomically.
