@@ -48,6 +48,11 @@ fs::path temporary_name(const fs::path& file) {
 template <typename WriteFn>
 void write_atomically(const fs::path& file, WriteFn write) {
   const fs::path tmp = temporary_name(file);
+  // Known to prism's deadline handler, which removes it if a signal's grace period runs out.
+  struct Registered {
+    int slot;
+    ~Registered() { unregister_temporary_file(slot); }
+  } registered{register_temporary_file(tmp.c_str())};
   try {
     write(tmp);
     // An interrupted run leaves the older file as it was, even when the
