@@ -106,6 +106,7 @@ bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s) {
 }
 
 bool reject_hit(const Object& object, double t, double tmin, double tmax) {
+  if (cancel_requested()) return false;  // the run is stopping already: the first fault is the one named
   char text[128];
   std::snprintf(text, sizeof text, "returned a hit at t = %g, outside (tmin, tmax] = (%g, %g]", t, tmin, tmax);
   request_stop_for_fault(fault_message(object, text));
