@@ -26,6 +26,26 @@ double PhaseTimer::total() const {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
 }
 
+namespace {
+// The primitive plugins the scene uses that hide another file of the same
+// type later in the search path (a `sphere` in PRISM_PLUGIN_PATH before the
+// built-in one): {type: {"used": file, "overrides": [files]}}.
+nlohmann::ordered_json plugin_overrides(const Scene& scene) {
+  const Registry registry;
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
+  for (const Object& object : scene.objects) {
+    if (!object.plugin) continue;
+    const std::string type = object.plugin->name();
+    if (out.contains(type)) continue;
+    std::vector<std::string> hidden;
+    for (const auto& file : registry.files_of("primitive", type))
+      if (file != object.plugin->path()) hidden.push_back(file.string());
+    if (!hidden.empty()) out[type] = {{"used", object.plugin->path().string()}, {"overrides", hidden}};
+  }
+  return out;
+}
+}  // namespace
+
 StagedFile stage_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
                        std::map<std::string, double> ms) {
   const BackendStats stats = choice.backend->stats();
@@ -39,6 +59,7 @@ StagedFile stage_stats(const std::string& file, const BackendChoice& choice, con
   nlohmann::ordered_json j;
   j["backend"] = choice.name;
   j["plugins_loaded"] = scene.plugin_names();
+  if (auto overrides = plugin_overrides(scene); !overrides.empty()) j["plugins_overriding"] = overrides;
   j["kernel_features"] = stats.kernel_features;
   j["rays"] = stats.rays;
   j["rays_by_kind"] = stats.rays_by_kind;
@@ -61,8 +82,23 @@ void write_stats(const std::string& file, const BackendChoice& choice, const Sce
 }
 
 namespace {
-// Only an atomic store: all a signal handler may safely do here.
-void on_interrupt(int signal) { request_cancel(signal); }
+volatile sig_atomic_t first_signal = 0;
+
+// Only async-signal-safe calls: an atomic store and alarm().
+void on_interrupt(int signal) {
+  if (first_signal == 0) first_signal = signal;
+  request_cancel(signal);
+  alarm(kStopGraceSeconds);  // a run stuck in a plugin never checks the request
+}
+
+// The grace period ran out: remove the temporary files and exit as the
+// signal asked, without unwinding anything (unlink and _exit are safe here).
+void on_deadline(int) {
+  static const char message[] = "prism: interrupted, and the run did not stop within the grace period: ended at once, the output files were left as they were\n";
+  [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, message, sizeof message - 1);
+  remove_temporary_files();
+  _exit(128 + (first_signal != 0 ? int(first_signal) : SIGTERM));
+}
 }  // namespace
 
 void stop_on_interrupt() {
@@ -74,6 +110,10 @@ void stop_on_interrupt() {
   action.sa_flags = SA_RESTART | SA_RESETHAND;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  struct sigaction deadline = {};
+  deadline.sa_handler = on_deadline;
+  sigemptyset(&deadline.sa_mask);
+  sigaction(SIGALRM, &deadline, nullptr);
 }
 
 namespace {

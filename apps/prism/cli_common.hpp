@@ -56,6 +56,10 @@ StagedFile stage_stats(const std::string& file, const BackendChoice& choice, con
 // Makes SIGINT and SIGTERM request cancellation (prism/cancel.hpp), so a
 // render or trace stops within a tile, its temporary file is removed and
 // main() exits 128 + the signal. A second signal ends the process at once.
+// A run still going kStopGraceSeconds after the first signal (stuck in a
+// plugin that never returns) is ended then by SIGALRM: the registered
+// temporary files are removed and the process exits 128 + the signal.
+inline constexpr unsigned kStopGraceSeconds = 2;
 void stop_on_interrupt();
 
 // A progress bar on stderr, drawn only when stderr is a terminal.

@@ -35,7 +35,15 @@ std::vector<std::string> backends_to_run(Registry& registry, const BenchArgs& ar
     for (const std::string& name : args.backends) registry.backend(name);  // InputError when unknown
     return args.backends;
   }
-  return registry.backend_names_found();
+  // Every backend found, less those that do not load or crash in a probe of their own.
+  std::vector<std::string> names;
+  for (const auto& [name, probe] : registry.probe_backends(registry.backend_names_found())) {
+    if (probe.error.empty())
+      names.push_back(name);
+    else
+      std::fprintf(stderr, "prism bench: skipping backend '%s': %s\n", name.c_str(), probe.error.c_str());
+  }
+  return names;
 }
 
 // Where a frame's time goes: each phase's share of the render threads' time.
@@ -117,7 +125,7 @@ int run_bench(const BenchArgs& args) {
   if (!args.json.empty()) check_output_path(args.json, {".json"});
   if (args.frames < 1) throw InputError("--frames must be >= 1, got " + std::to_string(args.frames));
   if (args.warmup < 1) throw InputError("--warmup must be >= 1, got " + std::to_string(args.warmup));
-  if (!std::isfinite(args.orbit)) throw InputError("--orbit must be a finite number of degrees");
+  bench::check_orbit_degrees(args.orbit);
   PhaseTimer timer;
   Registry registry;
   Scene scene = load_scene(args.scene, registry);

@@ -9,24 +9,45 @@ namespace prism::cli {
 
 namespace {
 
+// Two files of one name: the first in the search path is the one used, and
+// it hides the others. Said on both lines, so that a plugin in
+// PRISM_PLUGIN_PATH never replaces a built-in one silently.
+std::string override_note(const std::vector<PluginReport>& reports, const PluginReport& report) {
+  std::string note;
+  bool before = true;
+  for (const PluginReport& other : reports) {
+    if (&other == &report) {
+      before = false;
+      continue;
+    }
+    if (other.kind != report.kind || other.name != report.name) continue;
+    if (before) return " [not used: overridden by " + other.path.string() + "]";
+    note += (note.empty() ? " [overrides " : ", ") + other.path.string();
+  }
+  return note.empty() ? "" : note + "]";
+}
+
 int run_list() {
   Registry registry;
   std::printf("plugin search path:\n");
   for (const auto& folder : registry.search_path()) std::printf("  %s\n", folder.c_str());
   std::string kind;
-  for (const auto& report : registry.scan_all()) {
+  const std::vector<PluginReport> reports = registry.scan_all();
+  for (const auto& report : reports) {
     if (report.kind != kind) {
       kind = report.kind;
       std::printf("%s:\n", kind == "backend" ? "backends" : "primitive plugins");
     }
+    const std::string note = override_note(reports, report);
     if (!report.error.empty()) {
-      std::printf("  %-10s  failed to load: %s (%s)\n", report.name.c_str(), report.error.c_str(), report.path.c_str());
+      std::printf("  %-10s  failed to load: %s (%s)%s\n", report.name.c_str(), report.error.c_str(),
+                  report.path.c_str(), note.c_str());
       continue;
     }
     std::string status;
     if (kind == "backend") status = (report.usable ? "usable: " : "not usable here: ") + report.detail;
-    std::printf("  %-10s  %-8s %s (%s)\n", report.name.c_str(), report.version.c_str(), status.c_str(),
-                report.path.c_str());
+    std::printf("  %-10s  %-8s %s (%s)%s\n", report.name.c_str(), report.version.c_str(), status.c_str(),
+                report.path.c_str(), note.c_str());
   }
   return 0;
 }

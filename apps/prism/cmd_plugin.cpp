@@ -210,7 +210,13 @@ int run_plugin_check(const PluginCheckArgs& args) {
 
   std::string precision;
   auto reference_plugin = registry.backend("reference");
-  const std::vector<TraceResult> expected = trace_on(*reference_plugin, "reference", scene, rays, &precision);
+  std::vector<TraceResult> expected;
+  try {
+    expected = trace_on(*reference_plugin, "reference", scene, rays, &precision);
+  } catch (const RuntimeError& e) {  // the core refused what the plugin returned (a NaN, a hit out of range)
+    std::printf("  reference: FAIL: %s\n", e.what());
+    return 1;
+  }
   const auto hits = std::count_if(expected.begin(), expected.end(), [](const TraceResult& r) { return r.id >= 0; });
   std::printf("  reference: %lld of %d rays hit (the plugin's CPU intersector, double)\n", (long long)hits, args.rays);
   if (hits == 0) std::printf("  warning: no ray hits this object; give another with --object\n");
@@ -221,9 +227,18 @@ int run_plugin_check(const PluginCheckArgs& args) {
               all_pass ? "" : ": ", packets.first.c_str());
 
   std::vector<std::string> names = args.backends;
-  if (names.empty())
+  if (names.empty()) {
+    // Every backend found, less those that do not load or crash in a probe of their own.
+    std::vector<std::string> found;
     for (const std::string& name : registry.backend_names_found())
-      if (name != "reference") names.push_back(name);
+      if (name != "reference") found.push_back(name);
+    for (const auto& [name, probe] : registry.probe_backends(found)) {
+      if (probe.error.empty())
+        names.push_back(name);
+      else
+        std::printf("  %s: skipped: %s\n", name.c_str(), probe.error.c_str());
+    }
+  }
   for (const std::string& name : names) {
     auto backend_plugin = registry.backend(name);  // InputError when unknown
     const PrismBackendProbe probe = backend_plugin->probe();

@@ -34,6 +34,7 @@ FramePlan plan_frames(const Scene& scene, const std::string& output, int frames,
     if (frames > 0) throw InputError("--frames and --cameras: give one or the other");
     plan.cameras = load_cameras(cameras_file);
   } else if (frames > 0) {
+    bench::check_orbit_degrees(orbit_degrees);
     const bench::FrameCameras orbit(scene, orbit_degrees / frames);
     for (int i = 0; i < frames; ++i) plan.cameras.push_back(orbit(i));
   } else {

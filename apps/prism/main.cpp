@@ -5,14 +5,21 @@
 // backend, plugin that fails to load), 1 failure at run time, 128 + the
 // signal's number when SIGINT (130) or SIGTERM (143) stopped the run.
 #include <cstdio>
+#include <cstring>
 #include <map>
 
 #include "cli_common.hpp"
 #include "commands.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
+#include "prism/registry.hpp"
 
 int main(int argc, char** argv) {
+  // The hidden child of an isolated backend probe (prism/registry.hpp).
+  if (argc == 3 && std::strcmp(argv[1], prism::kProbeCommand) == 0) return prism::run_probe_child(argv[2]);
+  // Backends the run does not need are probed in children of this very
+  // executable, so that one that crashes or exits cannot end the run.
+  prism::set_probe_executable("/proc/self/exe");
   CLI::App app{"Prism: Whitted ray tracing of analytic primitives, with interchangeable backends"};
   app.require_subcommand(1);
   std::map<CLI::App*, prism::cli::Command> commands;

@@ -1,8 +1,9 @@
 #include "program_cache.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
-#include <iterator>
+#include <mutex>
 
 #include "prism/image_io.hpp"
 
@@ -18,16 +19,34 @@ fs::path program_cache_dir(const std::string& api) {
 }
 
 std::optional<std::string> read_cache_file(const fs::path& file) {
+  // Only a regular file (a link is followed) of a plausible size: a folder,
+  // a device (/dev/zero) or a 2 GB file at an entry's name is a miss, and
+  // the program is compiled again.
+  std::error_code ec;
+  const fs::file_status status = fs::status(file, ec);
+  if (ec || !fs::is_regular_file(status)) return std::nullopt;
+  const std::uintmax_t size = fs::file_size(file, ec);
+  if (ec || size > kMaxCacheFileBytes) return std::nullopt;
   std::ifstream in(file, std::ios::binary);
   if (!in) return std::nullopt;
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes(size_t(size), '\0');
+  in.read(bytes.data(), std::streamsize(size));
+  if (size_t(in.gcount()) != size || in.peek() != std::char_traits<char>::eof()) return std::nullopt;  // it changed
+  return bytes;
 }
 
 void write_cache_file(const fs::path& file, const std::string& bytes) {
   try {
     fs::create_directories(file.parent_path());
     write_text_file_atomically(file, bytes);
-  } catch (const std::exception&) {
+  } catch (const std::exception& e) {
+    // The render goes on without the cache, but say so once: silence would
+    // leave every later run compiling again with nobody knowing why.
+    static std::once_flag warned;
+    std::call_once(warned, [&] {
+      std::fprintf(stderr, "prism: warning: the program cache is not written (%s); kernels are compiled on every run\n",
+                   e.what());
+    });
   }
 }
 

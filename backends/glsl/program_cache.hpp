@@ -3,6 +3,7 @@
 // binary, SPIR-V with a Vulkan pipeline cache) is each backend's own.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -13,7 +14,12 @@ namespace prism::gpu {
 // ~/.cache/prism/<api>. Empty when none can be named.
 std::filesystem::path program_cache_dir(const std::string& api);
 
-// The file's bytes, or nothing when it cannot be read (a cache miss).
+// A cache file larger than this is not read (a miss): GL program binaries
+// and SPIR-V with its pipeline cache are a few MiB.
+inline constexpr std::uintmax_t kMaxCacheFileBytes = std::uintmax_t(256) << 20;
+
+// The file's bytes, or nothing when it cannot be read, is not a regular
+// file or is larger than kMaxCacheFileBytes (a cache miss).
 std::optional<std::string> read_cache_file(const std::filesystem::path& file);
 
 // Writes the file atomically; a cache that cannot be written only costs the

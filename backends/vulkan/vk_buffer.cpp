@@ -33,11 +33,9 @@ uint32_t memory_type(const Context& context, const VkMemoryRequirements& needs, 
   return uint32_t(chosen);
 }
 
-double timeout_seconds() {
-  const char* value = std::getenv("PRISM_VULKAN_TIMEOUT");
-  const double seconds = value ? std::atof(value) : 0.0;
-  return seconds > 0.0 ? seconds : 300.0;
-}
+// At most a day: the fence wait takes nanoseconds in 64 bits, and a longer
+// wait is a hang by any measure.
+double timeout_seconds() { return env_number("PRISM_VULKAN_TIMEOUT", 300.0, 0.001, 86400.0); }
 
 }  // namespace
 
@@ -127,6 +125,7 @@ Commands::~Commands() {
 }
 
 void Commands::run(const std::string& what, const std::function<void(VkCommandBuffer)>& record) {
+  const double seconds = timeout_seconds();  // a bad value is refused before anything is submitted
   const Api& api = context_.api();
   auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -140,7 +139,6 @@ void Commands::run(const std::string& what, const std::function<void(VkCommandBu
   const VkResult submitted = api.vkQueueSubmit(context_.queue(), 1, &submit, fence_);
   if (submitted == VK_ERROR_DEVICE_LOST) context_.abandon();
   check(submitted, what);
-  const double seconds = timeout_seconds();
   const VkResult waited = api.vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, uint64_t(seconds * 1e9));
   if (waited != VK_SUCCESS) context_.abandon();
   if (waited == VK_TIMEOUT)

@@ -91,10 +91,7 @@ Candidate examine(const Api& api, VkPhysicalDevice device, uint32_t index) {
 
 }  // namespace
 
-bool validation_requested() {
-  const char* value = std::getenv("PRISM_VULKAN_VALIDATION");
-  return value && *value && std::strcmp(value, "0") != 0;
-}
+bool validation_requested() { return env_number("PRISM_VULKAN_VALIDATION", 0.0, 0.0, 1.0) == 1.0; }
 
 Context::Context(bool validation) {
   api_.load_global();

@@ -138,6 +138,7 @@ std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
       r.normal = glm::normalize(ray.origin + hit.t * ray.dir - light.position);
     }
   }
+  throw_if_cancelled();  // a plugin fault in the last rays (request_stop_for_fault)
   stats.rays += rays.size();
   stats.rays_by_kind["trace"] += rays.size();
   stats.ms["render"] += ms_since(start);

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <string>
 
+#include "prism/cancel.hpp"
+#include "prism/errors.hpp"
+#include "prism/registry.hpp"
 #include "prism/sdk/sphere_math.hpp"
 
 namespace prism {
@@ -38,9 +43,40 @@ PrismRayExt to_local_ext(const Object& object, const Ray& ray) {
   return local;
 }
 
+// "primitive plugin 'torus' (FILE) ... for its object at (x, y, z)": the
+// object has no index here, its type and centre name it.
+std::string fault_message(const Object& object, const std::string& what) {
+  char centre[96];
+  std::snprintf(centre, sizeof centre, "(%g, %g, %g)", object.center.x, object.center.y, object.center.z);
+  const std::string file = object.plugin ? " (" + object.plugin->path().string() + ")" : "";
+  return "primitive plugin '" + std::string(object.desc->type_name) + "'" + file + " " + what + " for its object at " +
+         centre;
+}
+
+std::string triple(const double v[3]) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", v[0], v[1], v[2]);
+  return text;
+}
+
+bool finite3(const double v[3]) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
+
+void check_surface(const Object& object, const PrismSurface& s) {
+  if (!finite3(s.point))
+    throw RuntimeError(fault_message(object, "returned a non-finite surface point " + triple(s.point)));
+  if (!finite3(s.normal))
+    throw RuntimeError(fault_message(object, "returned a non-finite surface normal " + triple(s.normal)));
+  if (!std::isfinite(s.uv[0]) || !std::isfinite(s.uv[1])) {
+    char uv[64];
+    std::snprintf(uv, sizeof uv, "(%g, %g)", s.uv[0], s.uv[1]);
+    throw RuntimeError(fault_message(object, std::string("returned a non-finite uv ") + uv));
+  }
+}
+
 PrismSurface plugin_surface(const Object& object, const PrismRay& local, const PrismHit& hit) {
   PrismSurface s{};
   object.desc->surface(object.record(), &local, &hit, &s);
+  check_surface(object, s);
   return s;
 }
 
@@ -69,6 +105,14 @@ bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s) {
   return kInputUlps * std::numeric_limits<double>::epsilon() * reach > kPolishBelow * cosine * t;
 }
 
+bool reject_hit(const Object& object, double t, double tmin, double tmax) {
+  if (cancel_requested()) return false;  // the run is stopping already: the first fault is the one named
+  char text[128];
+  std::snprintf(text, sizeof text, "returned a hit at t = %g, outside (tmin, tmax] = (%g, %g]", t, tmin, tmax);
+  request_stop_for_fault(fault_message(object, text));
+  return false;
+}
+
 bool blocks(const Object& object, const Ray& ray, double tmax) {
   PrismHit hit;
   return intersect_object(object, ray, 0.0, tmax, hit) && hit.t < tmax;
@@ -82,6 +126,8 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
     const PrismRayExt ext = to_local_ext(object, ray);
     PrismHit polished = hit;
     object.desc->refine(object.record(), &ext, &polished);
+    if (!std::isfinite(polished.t))
+      throw RuntimeError(fault_message(object, "refined a hit to t = " + std::to_string(polished.t)));
     if (polished.t != hit.t) {
       s = plugin_surface(object, local, polished);
       t = polished.t;

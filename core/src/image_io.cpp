@@ -149,8 +149,14 @@ void check_output_path(const fs::path& file, const std::vector<std::string>& ext
 
 StagedFile::StagedFile(const fs::path& file, const std::function<void(const fs::path&, int)>& write)
     : file_(file), target_(write_target(file)), temporary_(temporary_name(target_)) {
+  // Known to prism's deadline handler, which removes it if a signal's grace period runs out.
+  deadline_slot_ = register_temporary_file(temporary_.c_str());
   const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) fail_writing(file_, errno);
+  if (fd < 0) {
+    const int error = errno;
+    unregister_temporary_file(deadline_slot_);
+    fail_writing(file_, error);
+  }
   try {
     keep_mode(target_, fd, file_);
     try {
@@ -165,26 +171,31 @@ StagedFile::StagedFile(const fs::path& file, const std::function<void(const fs::
     ::close(fd);
     std::error_code ignored;
     fs::remove(temporary_, ignored);
+    unregister_temporary_file(deadline_slot_);
     throw;
   }
   if (::close(fd) != 0) {
     const int error = errno;
     std::error_code ignored;
     fs::remove(temporary_, ignored);
+    unregister_temporary_file(deadline_slot_);
     fail_writing(file_, error);
   }
 }
 
 StagedFile::StagedFile(StagedFile&& other) noexcept
     : file_(std::move(other.file_)), target_(std::move(other.target_)), temporary_(std::move(other.temporary_)),
-      committed_(other.committed_) {
+      committed_(other.committed_), deadline_slot_(other.deadline_slot_) {
   other.committed_ = true;  // the moved-from object owns no temporary
+  other.deadline_slot_ = -1;
 }
 
 StagedFile::~StagedFile() {
-  if (committed_) return;
-  std::error_code ignored;
-  fs::remove(temporary_, ignored);
+  if (!committed_) {
+    std::error_code ignored;
+    fs::remove(temporary_, ignored);
+  }
+  unregister_temporary_file(deadline_slot_);
 }
 
 void StagedFile::commit() {

@@ -191,7 +191,7 @@ std::string describe(const Json& value) {
 }
 
 std::string child_path(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
+  return path.empty() ? printable(key) : path + "." + printable(key);
 }
 
 std::string index_path(const std::string& path, size_t index) {
@@ -272,7 +272,7 @@ void ObjectReader::fail_missing(const std::string& key) const {
   // A required key missing beside an unknown key that looks like it is a typo: name the typo.
   for (auto it = value_.begin(); it != value_.end(); ++it) {
     if (std::find(known_.begin(), known_.end(), it.key()) == known_.end() && edit_distance(it.key(), key) <= 2)
-      fail(path_of(it.key()), "unknown key (did you mean '" + key + "'?)");
+      fail(path_of(it.key()), "unknown key (did you mean " + quote(key) + "?)");
   }
   fail(path_of(key), "required key is missing");
 }

@@ -11,6 +11,8 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "quoting.hpp"
+
 namespace prism::json {
 
 using Json = nlohmann::json;

@@ -6,27 +6,14 @@
 #include <fstream>
 #include <sstream>
 
+#include "prism/cancel.hpp"
+#include "prism/limits.hpp"
+#include "quoting.hpp"
 #include "unit_vector.hpp"
 
 namespace prism {
 
 namespace {
-
-// The field as a message shows it: control bytes as \xNN, since a NUL
-// would end the message (what() is a C string) and others garble a terminal.
-std::string printable(const std::string& field) {
-  std::string out;
-  for (unsigned char c : field) {
-    if (c >= 0x20 && c != 0x7f) {
-      out += char(c);
-      continue;
-    }
-    char escaped[8];
-    std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
-    out += escaped;
-  }
-  return out;
-}
 
 std::vector<double> parse_fields(const std::string& line, const std::string& where) {
   std::vector<double> values;
@@ -39,8 +26,8 @@ std::vector<double> parse_fields(const std::string& line, const std::string& whe
     while (end && (*end == ' ' || *end == '\t' || *end == '\r')) ++end;
     // The whole field, not just up to a NUL byte inside it ("1\0x" is not 1).
     if (end == begin || end != begin + field.size())
-      throw InputError(where + ": '" + printable(field) + "' is not a number");
-    if (!std::isfinite(v)) throw InputError(where + ": '" + printable(field) + "' is not a finite number");
+      throw InputError(where + ": " + quote(field) + " is not a number");
+    if (!std::isfinite(v)) throw InputError(where + ": " + quote(field) + " is not a finite number");
     values.push_back(v);
   }
   if (!line.empty() && line.back() == ',') throw InputError(where + ": empty field at the end");
@@ -51,6 +38,26 @@ std::vector<double> parse_fields(const std::string& line, const std::string& whe
 
 TraceQuery ray_of(const std::vector<double>& v, const std::string& where) {
   return make_trace_query({v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v.size() == 7 ? v[6] : 0.0, where);
+}
+
+// The longest line a ray can need: 7 numbers of 17 digits with signs,
+// exponents and spaces, many times over.
+constexpr size_t kMaxLineBytes = 1024;
+
+// The next line into `line` (without its newline); false at the end. A line
+// longer than kMaxLineBytes is an error, so that a file without newlines
+// (/dev/zero) cannot grow one line without bound.
+bool next_line(std::istream& in, std::vector<char>& buffer, std::string& line, const std::string& where) {
+  in.getline(buffer.data(), std::streamsize(buffer.size()));
+  const size_t got = size_t(in.gcount());
+  if (in.fail() && !in.eof()) {
+    if (got == buffer.size() - 1)
+      throw InputError(where + ": longer than " + std::to_string(kMaxLineBytes) + " characters");
+    return false;  // a read error: in.bad(), reported by the caller
+  }
+  if (got == 0 && in.eof()) return false;
+  line.assign(buffer.data(), in.eof() ? got : got - 1);  // gcount counts the newline it took
+  return true;
 }
 
 }  // namespace
@@ -66,11 +73,15 @@ TraceQuery make_trace_query(const glm::dvec3& origin, const glm::dvec3& directio
 std::vector<TraceQuery> parse_ray_csv(std::istream& in, const std::string& source_name) {
   std::vector<TraceQuery> rays;
   std::string line;
-  for (size_t number = 1; std::getline(in, line); ++number) {  // size_t: no overflow at 2^31 lines
+  std::vector<char> buffer(kMaxLineBytes + 2);  // the line, its '\r' and the terminator
+  for (size_t number = 1; next_line(in, buffer, line, source_name + ":" + std::to_string(number)); ++number) {
+    if (number % 4096 == 0) throw_if_cancelled();  // a large file reads for seconds
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.find_first_not_of(" \t") == std::string::npos) continue;  // blank lines carry no ray
     if (number == 1 && line.rfind("ox", 0) == 0) continue;              // the optional header
     const std::string where = source_name + ":" + std::to_string(number);
+    if (rays.size() == limits::kMaxTraceRays)
+      throw InputError(where + ": more than " + std::to_string(limits::kMaxTraceRays) + " rays (the limit of one trace)");
     rays.push_back(ray_of(parse_fields(line, where), where));
   }
   if (in.bad()) throw InputError(source_name + ": cannot read ray file");

@@ -1,16 +1,26 @@
 #include "prism/registry.hpp"
 
 #include <dlfcn.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <set>
 #include <string_view>
 
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
+#include "quoting.hpp"
+
+extern char** environ;
 
 namespace fs = std::filesystem;
 
@@ -282,9 +292,9 @@ std::shared_ptr<const PrimitivePlugin> Registry::primitive(const std::string& ty
   auto plugin = load_first<PrimitivePlugin>(candidates("primitive", type), load_primitive_plugin, "type", type, failures);
   if (!plugin) {
     if (failures.empty())
-      throw InputError("unknown object type '" + type + "' (primitive plugins found: " + join(primitive_types_found()) +
+      throw InputError("unknown object type " + quote(type) + " (primitive plugins found: " + join(primitive_types_found()) +
                        "; searched " + join_paths(search_path_) + ")");
-    throw InputError("the primitive plugin for '" + type + "' failed to load: " + join(failures));
+    throw InputError("the primitive plugin for " + quote(type) + " failed to load: " + join(failures));
   }
   primitives_[type] = plugin;
   return plugin;
@@ -297,7 +307,7 @@ std::shared_ptr<const BackendPlugin> Registry::backend(const std::string& name) 
   auto plugin = load_first<BackendPlugin>(candidates("backend", name), load_backend_plugin, "backend", name, failures);
   if (!plugin) {
     if (failures.empty())
-      throw InputError("unknown backend '" + name + "' (backends found: " + join(backend_names_found()) +
+      throw InputError("unknown backend " + quote(name) + " (backends found: " + join(backend_names_found()) +
                        "; searched " + join_paths(search_path_) + ")");
     throw InputError("the backend '" + name + "' failed to load: " + join(failures));
   }
@@ -307,18 +317,13 @@ std::shared_ptr<const BackendPlugin> Registry::backend(const std::string& name) 
 
 std::vector<PluginReport> Registry::scan_all() {
   std::vector<PluginReport> reports;
+  std::vector<fs::path> backend_files;
   for (const std::string kind : {"backend", "primitive"}) {
     for (const auto& name : names_found(kind)) {
       for (const auto& file : candidates(kind, name)) {
         PluginReport report{kind, name, file, "", "", false, ""};
         if (kind == "backend") {
-          auto plugin = load_backend_plugin(file, report.error);
-          if (plugin) {
-            report.version = plugin->desc().version ? plugin->desc().version : "";
-            PrismBackendProbe probe = plugin->probe();
-            report.usable = probe.usable != 0;
-            report.detail = probe.reason;
-          }
+          backend_files.push_back(file);  // probed below, all at once
         } else {
           auto plugin = load_primitive_plugin(file, report.error);
           if (plugin) report.version = plugin->desc().plugin_version ? plugin->desc().plugin_version : "";
@@ -327,21 +332,56 @@ std::vector<PluginReport> Registry::scan_all() {
       }
     }
   }
+  const std::vector<BackendProbeReport> probes = probe_backend_files(backend_files);
+  for (size_t i = 0, b = 0; i < reports.size(); ++i) {
+    if (reports[i].kind != "backend") continue;
+    const BackendProbeReport& probe = probes[b++];
+    reports[i].error = probe.error;
+    reports[i].version = probe.version;
+    reports[i].usable = probe.usable;
+    reports[i].detail = probe.detail;
+  }
   return reports;
+}
+
+std::map<std::string, BackendProbeReport> Registry::probe_backends(const std::vector<std::string>& names) {
+  std::vector<fs::path> files;
+  std::vector<std::string> owners;
+  for (const std::string& name : names) {
+    for (const fs::path& file : candidates("backend", name)) {
+      files.push_back(file);
+      owners.push_back(name);
+    }
+  }
+  const std::vector<BackendProbeReport> probes = probe_backend_files(files);
+  std::map<std::string, BackendProbeReport> found;
+  std::map<std::string, std::vector<std::string>> failures;
+  for (size_t i = 0; i < probes.size(); ++i) {
+    const std::string& name = owners[i];
+    if (found.count(name)) continue;  // an earlier file of the search path won
+    if (probes[i].error.empty() && probes[i].name == name) {
+      found[name] = probes[i];
+      continue;
+    }
+    const std::string why = probes[i].error.empty() ? "it declares backend '" + probes[i].name + "'" : probes[i].error;
+    failures[name].push_back(files[i].string() + ": " + why);
+  }
+  for (const std::string& name : names) {
+    if (found.count(name)) continue;
+    BackendProbeReport& report = found[name];
+    report.error = failures.count(name) ? "failed to load: " + join(failures[name]) : "unknown backend '" + name + "'";
+  }
+  return found;
 }
 
 std::string pick_auto_backend(Registry& registry) {
   std::string best;
   int best_rank = -1;
-  for (const auto& name : registry.backend_names_found()) {
-    try {
-      auto plugin = registry.backend(name);
-      if (plugin->probe().usable && plugin->desc().speed_rank > best_rank) {
-        best = name;
-        best_rank = plugin->desc().speed_rank;
-      }
-    } catch (const InputError&) {
-      // a plugin that fails to load is simply not a candidate for auto
+  // A plugin that fails to load, crashes or cannot run here is simply not a candidate.
+  for (const auto& [name, probe] : registry.probe_backends(registry.backend_names_found())) {
+    if (probe.error.empty() && probe.usable && probe.speed_rank > best_rank) {
+      best = name;
+      best_rank = probe.speed_rank;
     }
   }
   if (best.empty()) throw InputError("-b auto: no usable backend found (run `prism list` to see why)");
@@ -351,8 +391,10 @@ std::string pick_auto_backend(Registry& registry) {
 OpenedBackend open_backend(Registry& registry, const std::string& requested) {
   const std::string name = requested == "auto" ? pick_auto_backend(registry) : requested;
   auto plugin = registry.backend(name);
-  PrismBackendProbe probe = plugin->probe();
-  if (!probe.usable) throw RuntimeError("backend '" + name + "' cannot run here: " + probe.reason);
+  if (requested != "auto") {  // auto's choice was probed already
+    PrismBackendProbe probe = plugin->probe();
+    if (!probe.usable) throw RuntimeError("backend '" + name + "' cannot run here: " + probe.reason);
+  }
   return {name, start_backend(*plugin, name)};
 }
 
@@ -367,6 +409,257 @@ std::unique_ptr<Backend> start_backend(const BackendPlugin& plugin, const std::s
   }
   if (!backend) throw RuntimeError("backend '" + name + "' failed to start");
   return backend;
+}
+
+}  // namespace prism
+
+// ------------------------------------------------ probes in a child process
+//
+// The child is a fresh `<exe> __probe-backend FILE` (posix_spawn), not a
+// fork of this process: a fork of a multi-threaded program (TBB workers, a
+// GPU driver's threads) may inherit locks held by threads that do not exist
+// in the child, and a plugin that calls exit() in a fork would run this
+// process's atexit handlers and flush its stdio buffers a second time.
+
+namespace prism {
+
+namespace {
+
+std::mutex probe_executable_mutex;
+fs::path probe_executable;  // guarded by probe_executable_mutex
+
+constexpr int kReportFd = 3;  // where the child writes its report
+
+BackendProbeReport probe_in_process(const fs::path& file) {
+  BackendProbeReport report;
+  report.file = file;
+  auto plugin = load_backend_plugin(file, report.error);
+  if (!plugin) return report;
+  report.name = plugin->name();
+  report.version = plugin->desc().version ? plugin->desc().version : "";
+  report.speed_rank = plugin->desc().speed_rank;
+  const PrismBackendProbe probe = plugin->probe();
+  report.usable = probe.usable != 0;
+  report.detail = probe.reason;
+  return report;
+}
+
+// The report travels as NUL-terminated fields: "ok" name version rank usable
+// detail, or "error" message.
+std::string encode(const BackendProbeReport& r) {
+  std::string out;
+  auto add = [&out](const std::string& field) {
+    out += field;
+    out += '\0';
+  };
+  if (!r.error.empty()) {
+    add("error");
+    add(r.error);
+  } else {
+    add("ok");
+    add(r.name);
+    add(r.version);
+    add(std::to_string(r.speed_rank));
+    add(r.usable ? "1" : "0");
+    add(r.detail);
+  }
+  return out;
+}
+
+// False when the child's bytes are not a whole report.
+bool decode(const std::string& data, BackendProbeReport& r) {
+  std::vector<std::string> fields;
+  for (size_t start = 0; start < data.size();) {
+    const size_t end = data.find('\0', start);
+    if (end == std::string::npos) return false;  // cut short
+    fields.push_back(data.substr(start, end - start));
+    start = end + 1;
+  }
+  if (fields.size() == 2 && fields[0] == "error") {
+    r.error = fields[1];
+    return true;
+  }
+  if (fields.size() != 6 || fields[0] != "ok") return false;
+  r.name = fields[1];
+  r.version = fields[2];
+  r.speed_rank = std::atoi(fields[3].c_str());
+  r.usable = fields[4] == "1";
+  r.detail = fields[5];
+  return true;
+}
+
+std::string signal_name(int signal) {
+  const char* abbrev = sigabbrev_np(signal);
+  return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
+}
+
+struct ChildProbe {
+  pid_t pid = -1;
+  int fd = -1;  // read end of the report pipe; -1 once at EOF
+  std::string data;
+  int status = 0;
+  bool reaped = false;
+};
+
+ChildProbe spawn_probe(const fs::path& executable, const fs::path& file) {
+  ChildProbe child;
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0) throw RuntimeError(std::string("cannot create a pipe: ") + std::strerror(errno));
+  if (fds[1] == kReportFd) {  // dup2 onto itself would keep O_CLOEXEC
+    const int moved = fcntl(fds[1], F_DUPFD_CLOEXEC, kReportFd + 1);
+    ::close(fds[1]);
+    fds[1] = moved;
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], kReportFd);
+  // What a plugin prints goes to stderr: stdout may be the run's output.
+  posix_spawn_file_actions_adddup2(&actions, STDERR_FILENO, STDOUT_FILENO);
+  const std::string exe = executable.string(), path = file.string();
+  char* argv[] = {const_cast<char*>(exe.c_str()), const_cast<char*>(kProbeCommand), const_cast<char*>(path.c_str()),
+                  nullptr};
+  const int failed = posix_spawn(&child.pid, exe.c_str(), &actions, nullptr, argv, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(fds[1]);
+  if (failed != 0) {
+    ::close(fds[0]);
+    throw RuntimeError("cannot start " + exe + " to probe " + path + ": " + std::strerror(failed));
+  }
+  child.fd = fds[0];
+  return child;
+}
+
+void read_some(ChildProbe& child) {
+  char buffer[4096];
+  const ssize_t n = ::read(child.fd, buffer, sizeof buffer);
+  if (n > 0 && child.data.size() < 65536) child.data.append(buffer, size_t(n));
+  if (n == 0 || (n < 0 && errno != EINTR && errno != EAGAIN)) {
+    ::close(child.fd);
+    child.fd = -1;
+  }
+}
+
+void reap(ChildProbe& child) {
+  if (child.reaped) return;
+  if (child.fd >= 0) ::close(child.fd);
+  child.fd = -1;
+  while (::waitpid(child.pid, &child.status, 0) < 0 && errno == EINTR) {
+  }
+  child.reaped = true;
+}
+
+void kill_all(std::vector<ChildProbe>& children) {
+  for (ChildProbe& child : children)
+    if (!child.reaped) ::kill(child.pid, SIGKILL);
+  for (ChildProbe& child : children) reap(child);
+}
+
+// Reaps a child that has closed its end of the pipe, if it has exited.
+void try_reap(ChildProbe& child) {
+  if (child.reaped || child.fd >= 0) return;
+  if (::waitpid(child.pid, &child.status, WNOHANG) == child.pid) child.reaped = true;
+}
+
+// Reads every child's report until each has exited, the deadline passes
+// (the rest are killed: hung) or a cancel request arrives (all killed, Cancelled).
+void collect(std::vector<ChildProbe>& children, std::vector<bool>& hung) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kProbeTimeoutSeconds);
+  for (;;) {
+    std::vector<pollfd> fds;
+    std::vector<size_t> which;
+    bool running = false;
+    for (size_t i = 0; i < children.size(); ++i) {
+      try_reap(children[i]);
+      running = running || !children[i].reaped;
+      if (children[i].fd < 0) continue;
+      fds.push_back({children[i].fd, POLLIN, 0});
+      which.push_back(i);
+    }
+    if (!running) return;
+    if (cancel_requested()) {
+      kill_all(children);
+      throw_if_cancelled();
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      for (size_t i = 0; i < children.size(); ++i) hung[i] = !children[i].reaped;
+      kill_all(children);
+      return;
+    }
+    if (fds.empty()) {
+      ::usleep(10000);  // only exits left to wait for
+      continue;
+    }
+    if (::poll(fds.data(), fds.size(), 100) <= 0) continue;
+    for (size_t k = 0; k < fds.size(); ++k)
+      if (fds[k].revents != 0) read_some(children[which[k]]);
+  }
+}
+
+BackendProbeReport report_of(const fs::path& file, ChildProbe& child, bool hung) {
+  reap(child);
+  BackendProbeReport report;
+  report.file = file;
+  // A whole report stands even if the child died after sending it.
+  if (!hung && decode(child.data, report)) return report;
+  report = BackendProbeReport{};
+  report.file = file;
+  if (hung)
+    report.error = "probe did not finish within " + std::to_string(kProbeTimeoutSeconds) + " s";
+  else if (WIFSIGNALED(child.status))
+    report.error = "probe crashed (" + signal_name(WTERMSIG(child.status)) + ")";
+  else
+    report.error = "probe exited with status " + std::to_string(WEXITSTATUS(child.status)) + " before reporting";
+  return report;
+}
+
+}  // namespace
+
+PrismBackendProbe BackendProbeReport::as_probe() const {
+  PrismBackendProbe probe{};
+  probe.usable = error.empty() && usable ? 1 : 0;
+  std::snprintf(probe.reason, sizeof probe.reason, "%s", error.empty() ? detail.c_str() : error.c_str());
+  return probe;
+}
+
+void set_probe_executable(fs::path executable) {
+  std::lock_guard lock(probe_executable_mutex);
+  probe_executable = std::move(executable);
+}
+
+int run_probe_child(const char* file) {
+  const std::string report = encode(probe_in_process(file));
+  for (size_t done = 0; done < report.size();) {
+    const ssize_t n = ::write(kReportFd, report.data() + done, report.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return 1;
+    done += size_t(n);
+  }
+  std::fflush(nullptr);
+  std::_Exit(0);  // no static destructors, no dlclose: the plugin had its say
+}
+
+std::vector<BackendProbeReport> probe_backend_files(const std::vector<fs::path>& files) {
+  fs::path executable;
+  {
+    std::lock_guard lock(probe_executable_mutex);
+    executable = probe_executable;
+  }
+  std::vector<BackendProbeReport> reports;
+  if (executable.empty()) {
+    for (const fs::path& file : files) reports.push_back(probe_in_process(file));
+    return reports;
+  }
+  std::vector<ChildProbe> children;
+  try {
+    for (const fs::path& file : files) children.push_back(spawn_probe(executable, file));
+  } catch (...) {
+    kill_all(children);
+    throw;
+  }
+  std::vector<bool> hung(children.size(), false);
+  collect(children, hung);
+  for (size_t i = 0; i < files.size(); ++i) reports.push_back(report_of(files[i], children[i], hung[i]));
+  return reports;
 }
 
 }  // namespace prism

@@ -95,7 +95,7 @@ size_t texture_pixels_left(const Scene& scene) {
 
 int texture_index(const std::map<std::string, int>& textures, const std::string& name, const std::string& path) {
   auto it = textures.find(name);
-  if (it == textures.end()) json::fail(path, "unknown texture '" + name + "'");
+  if (it == textures.end()) json::fail(path, "unknown texture " + quote(name));
   return it->second;
 }
 
@@ -111,8 +111,9 @@ Material read_material(const Json& value, const std::string& path, const std::ma
   m.shininess = r.number("shininess", m.shininess, {1.0, INFINITY, false, false});
   m.reflect = r.number("reflect", m.reflect, json::kUnit);
   m.ior = r.number("ior", m.ior, json::kNonNegative);
-  if (m.ior > 0 && m.ior < 1)
-    json::fail(r.path_of("ior"), "must be 0 (opaque) or >= 1, got " + json::format_number(m.ior));
+  if ((m.ior > 0 && m.ior < 1) || m.ior > limits::kMaxIor)
+    json::fail(r.path_of("ior"), "must be 0 (opaque) or in [1, " + json::format_number(limits::kMaxIor) + "], got " +
+                                     json::format_number(m.ior));
   m.absorb = r.vec3("absorb", m.absorb, json::kNonNegative);
   if (!m.dielectric() && m.absorb != glm::dvec3(0))
     json::fail(r.path_of("absorb"), "must be [0, 0, 0] on an opaque material (ior 0)");
@@ -141,7 +142,7 @@ Light read_light(const Json& value, const std::string& path) {
     json::require_nonzero(direction, r.path_of("direction"));
     light.direction = glm::normalize(rescaled(direction));  // any magnitude: 1e-200 and 1e300 too
   } else {
-    json::fail(r.path_of("type"), "unknown light type '" + type + "' (expected point or directional)");
+    json::fail(r.path_of("type"), "unknown light type " + quote(type) + " (expected point or directional)");
   }
   r.finish();
   return light;

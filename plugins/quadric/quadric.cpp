@@ -21,6 +21,7 @@
 // - GPU: quadric.glsl runs core/glsl/quadric.glsl, the GLSL double port of
 //   quadric_math.hpp that cylinder and cone run too (its record offsets are
 //   static_asserted there, against the same QuadricShape).
+#include <algorithm>
 #include <cmath>
 
 #include "prism/primitive_abi.h"
@@ -61,8 +62,25 @@ int validate(const double* values, PrismError* err) {
   return 0;
 }
 
+// f and s f have the same surface for any s != 0, but the intersector's
+// products of coefficients underflow near 1e-200 (noise) and overflow near
+// 1e200 (nothing). Dividing by the power of two nearest the largest
+// |coefficient| makes every record's largest coefficient lie in [1, 2) at
+// no cost in precision (a power of two scales exactly unless a coefficient
+// falls below the normal range), for the CPU and the GLSL intersector alike.
+void normalise_coefficients(double coef[10]) {
+  double largest = 0.0;
+  for (int i = 0; i < 10; ++i) largest = std::max(largest, std::abs(coef[i]));
+  if (!(largest > 0.0) || !std::isfinite(largest)) return;  // validate() refused all-zero A..I
+  const int exponent = std::ilogb(largest);
+  for (int i = 0; i < 10; ++i) coef[i] = std::ldexp(coef[i], -exponent);
+}
+
 void pack(const double* values, void* record) {
-  *static_cast<QuadricRecord*>(record) = make_quadric(values, values + 10, values + 13);
+  double coef[10];
+  std::copy(values, values + 10, coef);
+  normalise_coefficients(coef);
+  *static_cast<QuadricRecord*>(record) = make_quadric(coef, values + 10, values + 13);
 }
 
 int bounds(const void* record, double lo[3], double hi[3]) {

@@ -173,6 +173,9 @@ const std::vector<BadScene>& bad_scenes() {
       // ---- unknown names ----
       {"unknown_material", with_object(R"({"type": "sphere", "radius": 1, "material": "gold"})"),
        {"objects[0].material", "unknown material", "gold"}},
+      // A NUL cut the message short ("unknown material 're"): control bytes are escaped.
+      {"nul_in_material_name", with_object(R"({"type": "sphere", "radius": 1, "material": "re\u0000d"})"),
+       {"objects[0].material", "unknown material 're\\x00d'"}},
       {"unknown_texture", with_material(R"({"texture": "wood"})"), {"materials.m.texture", "unknown texture", "wood"}},
       {"unknown_cubemap_texture",
        with_extra(R"("background": {"cubemap": ["a", "b", "c", "d", "e", "f"]})"),
@@ -218,6 +221,9 @@ const std::vector<BadScene>& bad_scenes() {
       // ---- materials ----
       {"ior_in_0_1", with_material(R"({"ior": 0.5})"), {"materials.m.ior", "0.5"}},
       {"negative_ior", with_material(R"({"ior": -1.5})"), {"materials.m.ior", "-1.5"}},
+      // eta² overflowed into NaN pixels on every backend; the cap is 100.
+      {"huge_ior", with_material(R"({"ior": 1e100})"), {"materials.m.ior", "[1, 100]", "1e+100"}},
+      {"ior_just_over_cap", with_material(R"({"ior": 100.5})"), {"materials.m.ior", "100.5"}},
       {"absorb_on_opaque", with_material(R"({"absorb": [0.1, 0, 0]})"), {"materials.m.absorb", "opaque|ior"}},
       // ---- camera ----
       {"up_parallel_to_view", with_camera(R"({"position": [0, 0, -5], "look_at": [0, 0, 0], "up": [0, 0, 1]})"),

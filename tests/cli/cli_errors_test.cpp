@@ -37,6 +37,18 @@ TEST_P(LoaderErrors, RejectedWithPathAndNoOutput) {
 INSTANTIATE_TEST_SUITE_P(Scene, LoaderErrors, ::testing::ValuesIn(bad_scenes()),
                          [](const ::testing::TestParamInfo<BadScene>& info) { return info.param.name; });
 
+// A 5 MB key was echoed whole, in the JSON path and in the message. What a
+// message quotes is cut to 60 bytes, with the length it had.
+TEST_F(CliTest, AHugeKeyIsQuotedCutShort) {
+  SceneText s;
+  s.extra = "\"" + std::string(5'000'000, 'k') + "\": 1";
+  const fs::path scene = write("scene.json", s.text());
+  RunResult r = run({"render", scene.string(), "-b", "reference", "-o", path("out.png").string()});
+  EXPECT_TRUE(ExitedWith(r, 2));
+  EXPECT_TRUE(StderrHas(r, {std::string(60, 'k') + "… (5000000 bytes)", "unknown key"}));
+  EXPECT_LT(r.err.size(), 1000u) << r.err.substr(0, 300);
+}
+
 // The valid scene the table breaks really is valid, so every rejection above
 // is caused by the one change it makes.
 using ValidScene = CliTest;

@@ -63,5 +63,16 @@ TEST_F(Frames, FramesAndCamerasTogetherAreRefused) {
   EXPECT_TRUE(StderrHas(r, {"--frames and --cameras: give one or the other"}));
 }
 
+// A NaN orbit made every camera NaN: exit 0 and blank frames. Refused as
+// `prism bench` refuses it, and nothing is written.
+TEST_F(Frames, ANonFiniteOrbitIsRefused) {
+  for (const std::string value : {"nan", "inf", "-inf"}) {
+    const RunResult r = run(render("o.png") + std::vector<std::string>{"--frames", "2", "--orbit", value});
+    EXPECT_TRUE(ExitedWith(r, 2)) << value;
+    EXPECT_TRUE(StderrHas(r, {"--orbit must be a finite number of degrees"})) << value;
+    EXPECT_EQ(list_folder(dir()), (std::vector<std::string>{"scene.json"})) << value;
+  }
+}
+
 }  // namespace
 }  // namespace prism::cli_test

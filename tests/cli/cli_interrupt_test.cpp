@@ -77,7 +77,7 @@ std::string many_rays() {
 class Interrupt : public CliTest {
  protected:
   // Starts prism with `args` as CliTest::run does, without waiting for it.
-  Started start(const std::vector<std::string>& args) {
+  Started start(const std::vector<std::string>& args, const std::string& plugin_path = "") {
     Started s;
     std::vector<std::string> argv = {prism_binary().string()};
     argv.insert(argv.end(), args.begin(), args.end());
@@ -85,6 +85,7 @@ class Interrupt : public CliTest {
     std::vector<std::string> env;
     for (char** e = environ; *e; ++e)
       if (std::strncmp(*e, "PRISM_PLUGIN_PATH=", 18) != 0) env.emplace_back(*e);
+    if (!plugin_path.empty()) env.push_back("PRISM_PLUGIN_PATH=" + plugin_path);
     // Outside dir(): the test checks that the run left nothing in it.
     s.out = dir().parent_path() / ("bg.out." + std::to_string(++started_));
     s.err = dir().parent_path() / ("bg.err." + std::to_string(started_));
@@ -184,6 +185,43 @@ TEST_P(InterruptRender, SigintLeavesTheOldOutputAndExits130) {
 
 INSTANTIATE_TEST_SUITE_P(Backends, InterruptRender, testing::ValuesIn(prism::test::backend_names()),
                          prism::test::backend_param_name);
+
+// A primitive plugin whose intersect never returns: the run can never reach
+// a cancel check. kStopGraceSeconds (2 s) after SIGTERM it is ended anyway,
+// with 143, the older output untouched and no temporary file left.
+TEST_F(Interrupt, SigtermEndsARunStuckInAPlugin) {
+  const fs::path plugins = dir().parent_path() / "hang_plugins";  // outside dir(): compared below
+  fs::create_directories(plugins);
+  fs::copy_file(bad_plugin_folder() / "libprism_primitive_hang.so", plugins / "libprism_primitive_hang.so",
+                fs::copy_options::overwrite_existing);
+  const std::string old = "an older picture\n";
+  write("out.png", old);
+  SceneText scene_text;
+  scene_text.objects = R"([{"type": "hang", "radius": 1}])";
+  const fs::path scene = write("scene.json", scene_text.text());
+  const auto before = list_folder(dir());
+  Started s = start({"render", scene.string(), "-b", "reference", "-o", path("out.png").string()}, plugins.string());
+  ASSERT_GT(s.pid, 0);
+  if (!wait_until_busy(s, 0.5)) {
+    kill_and_reap(s);
+    FAIL() << s.command << " did not get stuck\n" << read_file(s.err);
+  }
+  ::kill(s.pid, SIGTERM);
+  // Without the deadline it never ends: give up (and fail) after 60 s.
+  int wstatus = 0;
+  const auto give_up = Clock::now() + std::chrono::seconds(60);
+  while (::waitpid(s.pid, &wstatus, WNOHANG) != s.pid) {
+    if (Clock::now() > give_up) {
+      kill_and_reap(s);
+      FAIL() << s.command << " ignored SIGTERM";
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  EXPECT_TRUE(WIFEXITED(wstatus) && WEXITSTATUS(wstatus) == 143) << "status " << wstatus << "\n" << read_file(s.err);
+  EXPECT_NE(read_file(s.err).find("interrupted, and the run did not stop within the grace period"), std::string::npos) << read_file(s.err);
+  EXPECT_EQ(list_folder(dir()), before);
+  EXPECT_EQ(read_file(path("out.png")), old);
+}
 
 TEST_F(Interrupt, SigtermEndsARenderWith143) { render_and_interrupt("reference", SIGTERM, 143, 1.0, 10.0); }
 

@@ -43,6 +43,17 @@ class InputLimits : public CliTest {
 };
 
 // A sparse file: refused from its size without reading it.
+// `--rays /dev/zero` grew by ~100 MB/s without end (one line, never a
+// newline): a line longer than 1024 characters is refused at once.
+TEST_F(InputLimits, RayFileWithoutNewlines) {
+  const fs::path scene = write("scene.json", SceneText{}.text());
+  const auto before = list_folder(dir());
+  RunResult r = run({"trace", scene.string(), "-b", "reference", "--rays", "/dev/zero", "-o", path("out.csv").string()});
+  EXPECT_TRUE(ExitedWith(r, 2));
+  EXPECT_TRUE(StderrHas(r, {"/dev/zero:1: longer than 1024 characters"}));
+  EXPECT_EQ(list_folder(dir()), before) << r;
+}
+
 TEST_F(InputLimits, SceneFileOverTheSizeLimit) {
   const fs::path scene = write("big.json", "");
   fs::resize_file(scene, (std::uintmax_t(64) << 20) + 1);

@@ -143,6 +143,93 @@ TEST_F(FaultyPlugins, BackendWhoseCreateThrowsFailsToStart) {
   EXPECT_FALSE(fs::exists(path("out.png")));
 }
 
+// ------------------------------------------------ backends that crash or exit
+
+// crashctor segfaults as its library loads, crashprobe in its probe,
+// exitctor calls exit(0) as it loads. Each is probed in a child process:
+// `prism list`, `-b auto` and `prism conform` report it and carry on.
+TEST_F(FaultyPlugins, ListReportsBackendsThatCrashOrExit) {
+  RunResult r = run_with_plugins({"list"});
+  ASSERT_TRUE(ExitedWith(r, 0));
+  EXPECT_NE(list_line(r.out, "backends:", "crashctor").find("probe crashed (SIGSEGV)"), std::string::npos) << r;
+  EXPECT_NE(list_line(r.out, "backends:", "crashprobe").find("probe crashed (SIGSEGV)"), std::string::npos) << r;
+  EXPECT_NE(list_line(r.out, "backends:", "exitctor").find("probe exited with status 0 before reporting"),
+            std::string::npos) << r;
+  EXPECT_NE(list_line(r.out, "backends:", "reference").find("usable"), std::string::npos) << r;
+  EXPECT_FALSE(list_line(r.out, "primitive plugins:", "sphere").empty()) << r;  // the list went on to the end
+}
+
+TEST_F(FaultyPlugins, AutoRendersDespiteBackendsThatCrashOrExit) {
+  RunResult r = run_with_plugins({"render", scene_, "-b", "auto", "-o", path("out.png").string()});
+  EXPECT_TRUE(ExitedWith(r, 0));
+  EXPECT_TRUE(fs::exists(path("out.png")));
+}
+
+TEST_F(FaultyPlugins, ConformSkipsBackendsThatCrashOrExit) {
+  // A 16x16 sphere keeps the real backends' share of the run short.
+  SceneText s;
+  s.image = R"({"width": 16, "height": 16})";
+  const fs::path small = write("small.json", s.text());
+  ::setenv("PRISM_CACHE_DIR", (dir().parent_path() / "cache").c_str(), 1);
+  RunResult r = run_with_plugins({"conform", small.string()});
+  ::unsetenv("PRISM_CACHE_DIR");
+  EXPECT_TRUE(r.exited) << r;  // the status depends on the other faulty backends (createthrows fails)
+  for (const char* name : {"crashctor", "crashprobe"})
+    EXPECT_NE(r.out.find(name), std::string::npos) << name << "\n" << r;
+  EXPECT_NE(r.out.find("probe crashed (SIGSEGV)"), std::string::npos) << r;
+  EXPECT_NE(r.out.find("probe exited with status 0 before reporting"), std::string::npos) << r;
+}
+
+// ------------------------------------------------ primitives whose answers are wrong
+
+struct WrongAnswer {
+  const char* name;     // the fixture's type
+  const char* message;  // what the error must say
+};
+
+const WrongAnswer kWrongAnswers[] = {
+    {"nanhit", "returned a hit at t = nan, outside (tmin, tmax]"},
+    {"outsidehit", "outside (tmin, tmax]"},
+    {"nansurface", "returned a non-finite surface normal"},
+};
+
+class WrongPrimitiveAnswer : public FaultyPlugins, public testing::WithParamInterface<WrongAnswer> {};
+
+// Exit 1 naming the plugin and its object, on both CPU backends: never an
+// assertion, a crash or a picture made of a NaN.
+TEST_P(WrongPrimitiveAnswer, RenderFailsNamingPluginAndObject) {
+  for (const std::string backend : {"reference", "embree"}) {
+    if (!prism::test::require_backend_or_skip(backend)) continue;
+    RunResult r = render_with(R"({"type": ")" + std::string(GetParam().name) + R"(", "radius": 1, "center": [2, 0, 0]})", backend);
+    EXPECT_TRUE(ExitedWith(r, 1)) << backend;
+    EXPECT_TRUE(StderrHas(r, {"primitive plugin '" + std::string(GetParam().name) + "'", GetParam().message,
+                              "for its object at (2, 0, 0)"})) << backend;
+    EXPECT_FALSE(fs::exists(path("out.png"))) << backend;
+  }
+}
+
+TEST_P(WrongPrimitiveAnswer, TraceFailsNamingPluginAndObject) {
+  SceneText s;
+  s.objects = R"([{"type": ")" + std::string(GetParam().name) + R"(", "radius": 1}])";
+  const fs::path scene = write("one.json", s.text());
+  const fs::path rays = write("rays.csv", "ox,oy,oz,dx,dy,dz\n0,0,5,0,0,-1\n");
+  RunResult r = run_with_plugins({"trace", scene.string(), "-b", "reference", "--rays", rays.string(), "-o",
+                                  path("hits.csv").string()});
+  EXPECT_TRUE(ExitedWith(r, 1));
+  EXPECT_TRUE(StderrHas(r, {"primitive plugin '" + std::string(GetParam().name) + "'", GetParam().message}));
+  EXPECT_FALSE(fs::exists(path("hits.csv")));
+}
+
+TEST_P(WrongPrimitiveAnswer, PluginCheckFails) {
+  const fs::path file = plugins_ / ("libprism_primitive_" + std::string(GetParam().name) + ".so");
+  RunResult r = run_with_plugins({"plugin", "check", file.string(), "-b", "embree", "--rays", "200"});
+  EXPECT_TRUE(ExitedWith(r, 1));
+  EXPECT_NE((r.out + r.err).find(GetParam().message), std::string::npos) << r;
+}
+
+INSTANTIATE_TEST_SUITE_P(Faults, WrongPrimitiveAnswer, testing::ValuesIn(kWrongAnswers),
+                         [](const testing::TestParamInfo<WrongAnswer>& info) { return std::string(info.param.name); });
+
 // ------------------------------------------------ GLSL that does not compile
 
 class BadGlsl : public FaultyPlugins, public testing::WithParamInterface<std::string> {

@@ -72,6 +72,29 @@ class PluginFaults : public CliTest {
   std::string scene_;
 };
 
+// A sphere plugin earlier in PRISM_PLUGIN_PATH replaced the built-in one
+// silently. `prism list` says so on both lines, and --stats names both files.
+TEST_F(CliTest, APluginThatOverridesABuiltInOneIsSaid) {
+  const fs::path mine = path("mine");
+  fs::create_directory(mine);
+  const fs::path builtin = default_plugin_folder() / "libprism_primitive_sphere.so";
+  fs::copy_file(builtin, mine / "libprism_primitive_sphere.so");
+  RunResult list = run({"list"}, mine.string());
+  ASSERT_TRUE(ExitedWith(list, 0));
+  EXPECT_NE(list.out.find("[overrides "), std::string::npos) << list;
+  EXPECT_NE(list.out.find("[not used: overridden by " + (mine / "libprism_primitive_sphere.so").string()),
+            std::string::npos) << list;
+
+  const fs::path scene = write("scene.json", SceneText{}.text());
+  RunResult render = run({"render", scene.string(), "-b", "reference", "-o", path("out.png").string(), "--stats",
+                          path("stats.json").string()},
+                         mine.string());
+  ASSERT_TRUE(ExitedWith(render, 0));
+  const std::string stats = read_file(path("stats.json"));
+  EXPECT_NE(stats.find("\"plugins_overriding\""), std::string::npos) << stats;
+  EXPECT_NE(stats.find((mine / "libprism_primitive_sphere.so").string()), std::string::npos) << stats;
+}
+
 TEST_F(PluginFaults, ListReportsEachBadPluginWithItsReason) {
   RunResult r = run_with_plugins({"list"});
   ASSERT_TRUE(ExitedWith(r, 0));

@@ -8,6 +8,7 @@
 // program-binary format only while its disk cache is on).
 #include <cstdint>
 #include <cstdlib>
+#include <functional>
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
@@ -116,6 +117,57 @@ TEST_P(ProgramCache, SecondRenderCompilesNothingAndCorruptFilesAreRebuilt) {
   EXPECT_EQ(stale["info"]["program_cache"], "stale");
   EXPECT_GT(compile_and_link_calls(stale), 0);
   EXPECT_EQ(read_file(path("first.png")), read_file(path("sixth.png")));
+}
+
+// A cache entry that is not a plausible file: a folder (the render failed),
+// a link to /dev/zero or a 2 GB file (read whole: 15.8 GB, then bad_alloc).
+// Each is a miss and the kernel is compiled again; the folder cannot be
+// replaced, which is said once on stderr. A cache folder that cannot be
+// written is said once too, not silently ignored.
+// Both GPU backends read and write entries through backends/glsl/program_cache.cpp:
+// one of them is enough, and each case costs a kernel compile.
+TEST_P(ProgramCache, OddEntriesAreMissesAndAnUnwritableCacheIsSaid) {
+  const std::string backend = GetParam();
+  if (backend != "opengl") GTEST_SKIP() << "run on opengl only (the cache code is shared)";
+  SceneText scene;
+  scene.image = R"({"width": 8, "height": 6})";
+  write("scene.json", scene.text());
+  json first = render(backend, "first.png");
+  if (first.is_null()) GTEST_SKIP() << backend << " cannot run here";
+  if (!first.contains("info") || !first["info"].contains("program_cache_file"))
+    GTEST_SKIP() << backend << " keeps no program cache";
+  const fs::path cache_file = first["info"]["program_cache_file"].get<std::string>();
+  ASSERT_TRUE(fs::is_regular_file(cache_file));
+
+  const auto render_with_entry = [&](const std::string& what, const std::function<void()>& make) {
+    SCOPED_TRACE(what);
+    fs::remove_all(cache_file);
+    make();
+    RunResult r = run({"render", path("scene.json").string(), "-b", backend, "-o", path("odd.png").string(), "--stats",
+                       path("odd.json").string()});
+    EXPECT_TRUE(ExitedWith(r, 0));
+    const json stats = json::parse(read_file(path("odd.json")));
+    EXPECT_EQ(stats["info"]["program_cache"], "miss");
+    EXPECT_GT(compile_and_link_calls(stats), 0);
+    return r;
+  };
+  RunResult folder = render_with_entry("a folder", [&] { fs::create_directory(cache_file); });
+  EXPECT_TRUE(StderrHas(folder, {"warning: the program cache is not written"}));
+  render_with_entry("a link to /dev/zero", [&] { fs::create_symlink("/dev/zero", cache_file); });
+  render_with_entry("a 2 GB file", [&] {
+    write_file(cache_file, "");
+    fs::resize_file(cache_file, std::uintmax_t(2) << 30);  // sparse: no disk space is used
+  });
+  fs::remove_all(cache_file);
+
+  // PRISM_CACHE_DIR under a regular file: nothing can be created there.
+  write_file(path("not-a-folder"), "");
+  ::setenv("PRISM_CACHE_DIR", path("not-a-folder").c_str(), 1);
+  RunResult r = run({"render", path("scene.json").string(), "-b", backend, "-o", path("nocache.png").string()});
+  ::setenv("PRISM_CACHE_DIR", path("prism-cache").c_str(), 1);
+  EXPECT_TRUE(ExitedWith(r, 0));
+  EXPECT_TRUE(StderrHas(r, {"warning: the program cache is not written"}));
+  EXPECT_EQ(r.err.find("warning"), r.err.rfind("warning")) << "said more than once\n" << r;
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, ProgramCache, testing::ValuesIn(backends_built()),

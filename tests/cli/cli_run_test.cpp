@@ -462,5 +462,39 @@ TEST_F(Render, EmptySceneLoadsNoPlugin) {
   EXPECT_EQ(stats["plugins_loaded"], json::array()) << stats.dump(2);
 }
 
+// A quadric's surface does not change when every coefficient is scaled by
+// one factor. The unit sphere scaled by 1e-200 traced as noise and by 1e200
+// as nothing, on every backend; the plugin now normalises its record. Ray 1
+// meets the sphere head on at t = 4 (from z = 5), ray 2 at 45 degrees from
+// (0, -5, 5) towards the origin at t = 5 sqrt(2) - 1, ray 3 misses (x = 2).
+TEST_F(CliTest, ScaledQuadricCoefficientsTraceTheSameSphere) {
+  const fs::path rays = write("rays.csv", "0,0,5,0,0,-1\n0,-5,5,0,1,-1\n2,0,5,0,0,-1\n");
+  for (const char* scale : {"1e-200", "1e-100", "1e100", "1e200"}) {
+    SceneText s;
+    s.objects = std::string(R"([{"type": "quadric", "coefficients": [)") + scale + ", " + scale + ", " + scale +
+                ", 0, 0, 0, 0, 0, 0, -" + scale + "]}]";
+    const fs::path scene = write("scaled.json", s.text());
+    for (const std::string backend : {"reference", "embree"}) {
+      if (!prism::test::require_backend_or_skip(backend)) continue;
+      SCOPED_TRACE(std::string(scale) + " on " + backend);
+      RunResult r = run({"trace", scene.string(), "-b", backend, "--rays", rays.string(), "-o",
+                         path("hits.csv").string(), "--digits", "17"});
+      ASSERT_TRUE(ExitedWith(r, 0));
+      const auto lines = lines_of(read_file(path("hits.csv")));
+      ASSERT_EQ(lines.size(), 3u);
+      const auto head_on = fields_of(lines[0]), oblique = fields_of(lines[1]);
+      ASSERT_EQ(head_on.size(), 5u);
+      ASSERT_EQ(oblique.size(), 5u);
+      EXPECT_NEAR(number(head_on[0]), 4.0, 1e-12);
+      EXPECT_EQ(head_on[1], "0");
+      EXPECT_NEAR(number(head_on[4]), 1.0, 1e-12);
+      EXPECT_NEAR(number(oblique[0]), 5.0 * std::sqrt(2.0) - 1.0, 1e-12);
+      EXPECT_NEAR(number(oblique[3]), -std::sqrt(0.5), 1e-12);
+      EXPECT_NEAR(number(oblique[4]), std::sqrt(0.5), 1e-12);
+      EXPECT_EQ(lines[2], "inf,-1,0,0,0");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace prism::cli_test

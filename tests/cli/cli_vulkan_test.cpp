@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli_harness.hpp"
+#include "test_support.hpp"
 
 namespace prism::cli_test {
 namespace {
@@ -61,6 +62,32 @@ INSTANTIATE_TEST_SUITE_P(
                          : info.param.variable == std::string("VK_ICD_FILENAMES")  ? "NoDriver"
                                                                                     : "NoMatchingDevice");
     });
+
+// PRISM_VULKAN_TIMEOUT=inf made every tile "not finish within -2147483648 s",
+// and a value that is not a number was ignored: both are refused by name.
+class VulkanTimeoutValue : public CliTest, public testing::WithParamInterface<std::string> {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    if (!prism::test::require_backend_or_skip("vulkan")) GTEST_SKIP();
+    ::setenv("PRISM_VULKAN_TIMEOUT", GetParam().c_str(), 1);
+  }
+  void TearDown() override {
+    ::unsetenv("PRISM_VULKAN_TIMEOUT");
+    CliTest::TearDown();
+  }
+};
+
+TEST_P(VulkanTimeoutValue, IsRefusedByName) {
+  write("scene.json", SceneText().text());
+  RunResult r = run({"render", path("scene.json").string(), "-b", "vulkan", "-o", path("out.png").string()});
+  EXPECT_TRUE(ExitedWith(r, 2));
+  EXPECT_TRUE(StderrHas(r, {"PRISM_VULKAN_TIMEOUT: must be a number in [0.001, 86400], got '" + GetParam() + "'"}));
+  EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
+INSTANTIATE_TEST_SUITE_P(Values, VulkanTimeoutValue, testing::Values("inf", "ten", "0"),
+                         [](const testing::TestParamInfo<std::string>& info) { return "case" + std::to_string(info.index); });
 
 }  // namespace
 }  // namespace prism::cli_test

@@ -7,6 +7,8 @@
 
 #include <cmath>
 
+#include "prism/cancel.hpp"
+
 namespace prism {
 namespace {
 
@@ -29,6 +31,26 @@ TEST(RayCsv, ReadsRaysWithHeaderTminBlankLinesAndCrlf) {
   EXPECT_EQ(rays[1].origin, glm::dvec3(1, 2, 3));
   EXPECT_EQ(rays[1].dir, glm::dvec3(0, -0.6, 0.8));
   EXPECT_EQ(rays[1].tmin, 0.5);
+}
+
+// A line of 1024 characters (and a '\r') is read; longer is refused (/dev/zero has no newline).
+TEST(RayCsv, LinesAreBoundedAt1024Characters) {
+  const std::string ray = "0,0,-5,0,0,1";
+  const std::string longest = ray + std::string(1024 - ray.size(), ' ');
+  EXPECT_EQ(parse_ray_csv(longest + "\r\n", "rays.csv").size(), 1u);
+  EXPECT_EQ(error_of(ray + "\n" + longest + "  \n"), "rays.csv:2: longer than 1024 characters");
+  EXPECT_EQ(error_of(std::string(5000, '\0')), "rays.csv:1: longer than 1024 characters");
+}
+
+// A stop request is seen while the file is read (every 4096 lines), not
+// only once the trace starts.
+TEST(RayCsv, AStopRequestEndsTheReading) {
+  std::string text;
+  for (int i = 0; i < 5000; ++i) text += "0,0,-5,0,0,1\n";
+  request_cancel(15);
+  EXPECT_THROW(parse_ray_csv(text, "rays.csv"), Cancelled);
+  clear_cancel();
+  EXPECT_EQ(parse_ray_csv(text, "rays.csv").size(), 5000u);
 }
 
 TEST(RayCsv, EmptyTextHasNoRays) { EXPECT_TRUE(parse_ray_csv("", "rays.csv").empty()); }

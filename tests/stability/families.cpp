@@ -706,6 +706,22 @@ void add_quadric(Builder& b) {
           return c;
         });
 
+  // The unit sphere with every coefficient times s: the same surface. Before
+  // the plugin normalised its record, 1e-200 traced as noise and 1e200 as
+  // nothing, on every backend.
+  b.add("quadric", "scaled", "unit sphere s (x^2 + y^2 + z^2 - 1) = 0: every coefficient times s (rotated)",
+        {"s", {1e-200, 1e-100, 1e100, 1e200}, 1e-200}, [](double s, int n, Rng& rng) {
+          Case c;
+          c.objects = nlohmann::json::array(
+              {placed({{"type", "quadric"}, {"coefficients", {s, s, s, 0, 0, 0, 0, 0, 0, -s}}}, kCenterA, kTilted)});
+          for (int i = 0; i < n; ++i) {
+            const V u = rng.unit();
+            const V N = normalize(kTilted.apply(u));
+            c.rays.push_back(ray_to(kCenterA + kTilted.apply(u), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+          }
+          return c;
+        });
+
   // The double cone x² + z² = y² (|y| <= 2, not rotated, apex at an exact
   // centre): rays aimed at the apex itself (eta = 0) or at surface points eta
   // from it, half from inside the cone's solid angle (through the apex the

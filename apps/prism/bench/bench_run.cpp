@@ -133,6 +133,10 @@ FrameCameras::FrameCameras(const Scene& scene, double orbit_degrees)
   start_ = viewer::orbit_start(scene.camera, viewer::read_camera_hints(text.str()), viewer::scene_bounds(scene));
 }
 
+void check_orbit_degrees(double degrees) {
+  if (!std::isfinite(degrees)) throw InputError("--orbit must be a finite number of degrees");
+}
+
 Camera FrameCameras::operator()(int index) const {
   viewer::CameraController controller(initial_, start_);
   if (index != 0) controller.orbit(index * radians_per_frame_, 0.0);

@@ -68,6 +68,9 @@ struct Result {
   double rays_per_second() const;  // total rays of the measured frames over their total time
 };
 
+// InputError unless --orbit's degrees are a finite number (bench and render --frames).
+void check_orbit_degrees(double degrees);
+
 // The camera of frame `index` (0 = the scene's; negative: the other way, for
 // warm-up frames): orbited about the point `prism view` orbits about, by
 // `orbit_degrees` per frame.

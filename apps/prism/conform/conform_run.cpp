@@ -242,14 +242,22 @@ std::vector<fs::path> scene_files(const std::vector<fs::path>& given) {
 }
 
 std::vector<Subject> subjects_for(Registry& registry, const Options& options) {
-  std::vector<std::string> names = options.backends;
-  if (names.empty())
-    for (const std::string& name : registry.backend_names_found())
-      if (name != "reference") names.push_back(name);
   std::vector<Subject> subjects;
-  for (const std::string& name : names) {
-    auto plugin = registry.backend(name);  // InputError when unknown
-    subjects.push_back({name, plugin, plugin->probe()});
+  if (!options.backends.empty()) {
+    for (const std::string& name : options.backends) {
+      auto plugin = registry.backend(name);  // InputError when unknown
+      subjects.push_back({name, plugin, plugin->probe()});
+    }
+    return subjects;
+  }
+  // Every backend found: each probed in a child process first, so that one
+  // that crashes or exits is reported as unusable instead of ending the run.
+  std::vector<std::string> names;
+  for (const std::string& name : registry.backend_names_found())
+    if (name != "reference") names.push_back(name);
+  for (const auto& [name, probe] : registry.probe_backends(names)) {
+    const PrismBackendProbe result = probe.as_probe();
+    subjects.push_back({name, result.usable ? registry.backend(name) : nullptr, result});
   }
   return subjects;
 }

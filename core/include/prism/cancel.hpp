@@ -6,7 +6,9 @@
 // target, so an interrupted run never replaces an older output.
 #pragma once
 
+#include <cstddef>
 #include <stdexcept>
+#include <string>
 
 #include "prism/errors.hpp"
 
@@ -28,11 +30,32 @@ class PRISM_CORE_API Cancelled : public std::runtime_error {
 // Async-signal-safe. `signal` is reported back by Cancelled::signal() (the
 // first request wins); pass a positive number, e.g. the signal's.
 void request_cancel(int signal) noexcept;
-// The first request's number, 0 when none is pending.
+// The first request's number, 0 when none is pending, kFaultStop when a
+// plugin fault stopped the run (request_stop_for_fault).
 int cancel_requested() noexcept;
 // Forgets a request (for a program that carries on after a cancelled run).
 void clear_cancel() noexcept;
-// Throws Cancelled when a request is pending.
+// Throws Cancelled when a request is pending; for a fault, RuntimeError with
+// its message (and the fault is forgotten: the next run starts clean).
 void throw_if_cancelled();
+
+// Temporary files that must not outlive the process: a program's deadline
+// handler (prism's, after a signal the run did not stop for) removes them
+// with remove_temporary_files(). The names live in a fixed table, so all
+// three are async-signal-safe. A name that does not fit (too long, table
+// full) is not registered: the normal clean-up still covers it.
+inline constexpr int kMaxTemporaryFiles = 16;
+inline constexpr size_t kMaxTemporaryNameBytes = 4096;
+int register_temporary_file(const char* path) noexcept;  // its slot, -1 when not registered
+void unregister_temporary_file(int slot) noexcept;       // -1: nothing
+void remove_temporary_files() noexcept;
+
+// A plugin fault found where no exception may be thrown (inside Embree's
+// callbacks, which swallow exceptions): it stops the run like a cancel
+// request, and throw_if_cancelled() then throws it as a RuntimeError
+// (exit status 1). The first request wins. Process-wide, like the signal:
+// renders running at the same time in one process stop too.
+inline constexpr int kFaultStop = -1;
+void request_stop_for_fault(const std::string& message);
 
 }  // namespace prism

@@ -27,4 +27,10 @@ class PRISM_CORE_API RuntimeError : public std::runtime_error {
   ~RuntimeError() override;
 };
 
+// A number from the environment: `fallback` when `variable` is unset or
+// empty; otherwise the whole value must be a finite number in [min, max],
+// else InputError naming the variable, its value and the range (exit status
+// 2). Every numeric PRISM_* variable is read through this.
+double env_number(const char* variable, double fallback, double min, double max);
+
 }  // namespace prism

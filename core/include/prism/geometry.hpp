@@ -50,10 +50,20 @@ inline PrismRay to_local(const Object& object, const Ray& ray) {
   return PrismRay{{origin.x, origin.y, origin.z}, {dir.x, dir.y, dir.z}};
 }
 
+// A hit a plugin returned outside (tmin, tmax] or at a NaN or infinite t:
+// stops the run with an error naming the plugin and the object
+// (request_stop_for_fault: this may run inside Embree, which swallows
+// exceptions) and drops the hit. Returns false. Never reached by a sound plugin.
+bool reject_hit(const Object& object, double t, double tmin, double tmax);
+
 // Closest hit on one object with tmin < t <= tmax.
 inline bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit) {
   const PrismRay local = to_local(object, ray);
-  return object.desc->intersect(object.record(), &local, tmin, tmax, &hit) != 0;
+  if (object.desc->intersect(object.record(), &local, tmin, tmax, &hit) == 0) return false;
+  // The plugin's word is checked, not trusted (a NaN fails the first test).
+  if (!(hit.t > tmin && hit.t <= tmax) || hit.t == kInfinity) [[unlikely]]
+    return reject_hit(object, hit.t, tmin, tmax);
+  return true;
 }
 
 // Lanes of a packet of world rays (lane i is rays[i]) in the object's local
@@ -99,6 +109,8 @@ inline uint32_t blocks_packet(const Object& object, const Ray* rays, uint32_t ac
 bool blocks(const Object& object, const Ray& ray, double tmax);
 
 // World-space point, outward normal and uv of a hit found by intersect_object.
+// A plugin's surface with a non-finite point, normal or uv (or a polish to a
+// non-finite t) throws RuntimeError naming the plugin and the object.
 // Where one ulp of input rounding could move the hit's t by more than ~1e-11
 // relative (a grazing ray, a hit far from the object's origin), the plugin's
 // `refine` first polishes t in long double; `t` is the result.

@@ -37,6 +37,8 @@ class StagedFile {
  private:
   std::filesystem::path file_, target_, temporary_;
   bool committed_ = false;
+  // The temporary's slot in the list the signal deadline removes (cancel.hpp).
+  int deadline_slot_ = -1;
 };
 
 // .png: 8-bit sRGB of the clamped values; .exr: linear float RGB plus the

@@ -29,4 +29,13 @@ constexpr size_t kMaxJsonDepth = 64;
 // from its header before any pixel is allocated.
 constexpr size_t kMaxTexturePixels = size_t(1) << 28;
 
+// A material's `ior` is 0 (opaque) or in [1, kMaxIor]: no material comes
+// near it (diamond 2.42, germanium 4.0), and under it eta² in the refraction
+// can never overflow into a NaN.
+constexpr double kMaxIor = 100.0;
+
+// `prism trace --rays`: at most this many rays (about 1 GiB of rays and
+// results in memory), counted while the file is read.
+constexpr size_t kMaxTraceRays = size_t(10) << 20;
+
 }  // namespace prism::limits

@@ -60,6 +60,35 @@ class BackendPlugin {
   const PrismBackendDesc* desc_;
 };
 
+// One backend plugin file loaded and probed, in a child process where the
+// program allows it (set_probe_executable): a plugin that crashes or exits
+// while it loads or probes ends the child, not the caller.
+struct BackendProbeReport {
+  std::filesystem::path file;
+  std::string name;       // the descriptor's, when it loaded
+  std::string version;
+  int speed_rank = 0;
+  std::string error;      // why it did not load or report ("probe crashed (SIGSEGV)"); empty when it did
+  bool usable = false;    // the probe says it can run here
+  std::string detail;     // the probe's description or reason
+  // As a PrismBackendProbe: a load error or crash is "cannot run here" with its reason.
+  PrismBackendProbe as_probe() const;
+};
+
+// Loads and probes each file, each in a child process of its own when a
+// probe executable is set (all at once), else in this process.
+std::vector<BackendProbeReport> probe_backend_files(const std::vector<std::filesystem::path>& files);
+
+// The program whose `<exe> __probe-backend FILE` runs run_probe_child
+// (prism sets its own). Without one, probes run in this process.
+inline constexpr const char* kProbeCommand = "__probe-backend";
+void set_probe_executable(std::filesystem::path executable);
+// The child's side: loads and probes `file` and writes the result to file
+// descriptor 3. Returns the exit status.
+int run_probe_child(const char* file);
+// How long a child probe may take before it is killed and reported as hung.
+inline constexpr int kProbeTimeoutSeconds = 60;
+
 // What was found in one plugin file, loaded or not.
 struct PluginReport {
   std::string kind;  // "primitive" or "backend"
@@ -90,6 +119,15 @@ class Registry {
 
   // Every plugin file in the search path, each loaded to report on it.
   std::vector<PluginReport> scan_all();
+  // Each backend of `names` probed as backend() would load it (the first
+  // candidate file that declares that name), through probe_backend_files.
+  // An unknown name has the report's error set.
+  std::map<std::string, BackendProbeReport> probe_backends(const std::vector<std::string>& names);
+  // Every file in the search path that may hold the plugin `name` of `kind`
+  // ("primitive" or "backend"), in search order: the first that loads wins.
+  std::vector<std::filesystem::path> files_of(const std::string& kind, const std::string& name) const {
+    return candidates(kind, name);
+  }
   std::vector<std::string> primitive_types_found() const;
   std::vector<std::string> backend_names_found() const;
 
@@ -108,7 +146,8 @@ struct OpenedBackend {
   std::unique_ptr<Backend> backend;
 };
 
-// The usable backend with the highest speed_rank; InputError when none is.
+// The usable backend with the highest speed_rank, each probed through
+// probe_backends (a plugin that crashes is passed over); InputError when none is.
 std::string pick_auto_backend(Registry& registry);
 // Loads, probes and starts the backend `name` ("auto": pick_auto_backend).
 // Unknown or unloadable: InputError; cannot run or start here: RuntimeError.
