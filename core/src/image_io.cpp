@@ -46,11 +46,17 @@ fs::path temporary_name(const fs::path& file) {
 
 // The file a write replaces: `file`, or the end of the chain of symbolic
 // links it names (a dangling link's target too), so the link stays a link.
+// Only a regular file (or nothing yet) is written through a link: a link to
+// a device, a FIFO or a folder (a cache entry pointing at /dev/zero) is
+// itself replaced, so a write never renames a file over /dev/zero.
 fs::path write_target(const fs::path& file) {
   fs::path target = file;
   for (int hops = 0; hops < 40; ++hops) {
     std::error_code ec;
-    if (!fs::is_symlink(fs::symlink_status(target, ec))) return target;
+    if (!fs::is_symlink(fs::symlink_status(target, ec))) {
+      const fs::file_status status = fs::status(target, ec);
+      return !fs::exists(status) || fs::is_regular_file(status) ? target : file;
+    }
     const fs::path link = fs::read_symlink(target, ec);
     if (ec) return target;
     target = link.is_absolute() ? link : target.parent_path() / link;

@@ -45,8 +45,8 @@ def test_a_dict_gets_the_messages_a_file_gets(engine, tmp_path):
     with pytest.raises(prism.SceneError) as from_dict:
         engine.load_scene(scene)
     assert from_file.value.path == from_dict.value.path == "materials.red.ior"
-    assert str(from_file.value) == f"{file}: materials.red.ior: must be 0 (opaque) or >= 1, got 0.5"
-    assert str(from_dict.value) == "<dict>: materials.red.ior: must be 0 (opaque) or >= 1, got 0.5"
+    assert str(from_file.value) == f"{file}: materials.red.ior: must be 0 (opaque) or in [1, 100], got 0.5"
+    assert str(from_dict.value) == "<dict>: materials.red.ior: must be 0 (opaque) or in [1, 100], got 0.5"
 
 
 def test_values_json_cannot_hold_are_refused_with_their_path(engine):

@@ -153,7 +153,13 @@ TEST_P(ProgramCache, OddEntriesAreMissesAndAnUnwritableCacheIsSaid) {
   };
   RunResult folder = render_with_entry("a folder", [&] { fs::create_directory(cache_file); });
   EXPECT_TRUE(StderrHas(folder, {"warning: the program cache is not written"}));
-  render_with_entry("a link to /dev/zero", [&] { fs::create_symlink("/dev/zero", cache_file); });
+  // A link to an endless stream that is not a regular file: a FIFO of the
+  // test's own, not /dev/zero, which a writer that followed the link would
+  // have replaced for the whole machine. The entry is replaced, not the FIFO.
+  const fs::path fifo = path("endless-fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  render_with_entry("a link to a FIFO", [&] { fs::create_symlink(fifo, cache_file); });
+  EXPECT_TRUE(fs::is_fifo(fifo));
   render_with_entry("a 2 GB file", [&] {
     write_file(cache_file, "");
     fs::resize_file(cache_file, std::uintmax_t(2) << 30);  // sparse: no disk space is used

@@ -70,6 +70,19 @@ TEST_F(OutputFiles, ASymbolicLinkIsWrittenThrough) {
   EXPECT_EQ(fs::directory_iterator(dir_ / "store")->path().filename(), "stats.json");  // no temporary left
 }
 
+// A link to something that is not a regular file (a FIFO here; /dev/zero in
+// a program cache) is replaced itself: the write never renames a file over
+// a device or a FIFO.
+TEST_F(OutputFiles, ALinkToANonRegularFileIsReplacedNotFollowed) {
+  const fs::path fifo = dir_ / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_symlink(fifo, dir_ / "entry");
+  write_text_file_atomically(dir_ / "entry", "new\n");
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_FALSE(fs::is_symlink(dir_ / "entry"));
+  EXPECT_EQ(test::read_file(dir_ / "entry"), "new\n");
+}
+
 TEST_F(OutputFiles, AParentThatIsAFileIsSaidToBeNoFolder) {
   test::write_file(dir_ / "plain", "x");
   const fs::path file = dir_ / "plain" / "out.png";
