@@ -13,6 +13,7 @@
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <set>
 #include <string_view>
 
@@ -374,18 +375,36 @@ std::map<std::string, BackendProbeReport> Registry::probe_backends(const std::ve
   return found;
 }
 
+namespace {
+constexpr int kNoProbeExecutable = -2;
+// -b auto through child probes: the index of the fastest usable file, -1
+// when none is, kNoProbeExecutable when this program probes in process.
+int pick_fastest_usable(const std::vector<fs::path>& files, const std::vector<std::string>& owners);
+}  // namespace
+
 std::string pick_auto_backend(Registry& registry) {
-  std::string best;
-  int best_rank = -1;
-  // A plugin that fails to load, crashes or cannot run here is simply not a candidate.
-  for (const auto& [name, probe] : registry.probe_backends(registry.backend_names_found())) {
-    if (probe.error.empty() && probe.usable && probe.speed_rank > best_rank) {
-      best = name;
-      best_rank = probe.speed_rank;
+  std::vector<fs::path> files;
+  std::vector<std::string> owners;
+  for (const std::string& name : registry.backend_names_found()) {
+    for (const fs::path& file : registry.files_of("backend", name)) {
+      files.push_back(file);
+      owners.push_back(name);
     }
   }
-  if (best.empty()) throw InputError("-b auto: no usable backend found (run `prism list` to see why)");
-  return best;
+  const int chosen = pick_fastest_usable(files, owners);
+  if (chosen >= 0) return owners[size_t(chosen)];
+  if (chosen == kNoProbeExecutable) {  // a program without a probe executable: every probe in this process
+    std::string best;
+    int best_rank = -1;
+    for (const auto& [name, probe] : registry.probe_backends(registry.backend_names_found())) {
+      if (probe.error.empty() && probe.usable && probe.speed_rank > best_rank) {
+        best = name;
+        best_rank = probe.speed_rank;
+      }
+    }
+    if (!best.empty()) return best;
+  }
+  throw InputError("-b auto: no usable backend found (run `prism list` to see why)");
 }
 
 OpenedBackend open_backend(Registry& registry, const std::string& requested) {
@@ -430,11 +449,13 @@ fs::path probe_executable;  // guarded by probe_executable_mutex
 
 constexpr int kReportFd = 3;  // where the child writes its report
 
-BackendProbeReport probe_in_process(const fs::path& file) {
+BackendProbeReport probe_in_process(const fs::path& file,
+                                    const std::function<void(const BackendPlugin&)>& loaded = nullptr) {
   BackendProbeReport report;
   report.file = file;
   auto plugin = load_backend_plugin(file, report.error);
   if (!plugin) return report;
+  if (loaded) loaded(*plugin);
   report.name = plugin->name();
   report.version = plugin->desc().version ? plugin->desc().version : "";
   report.speed_rank = plugin->desc().speed_rank;
@@ -466,8 +487,36 @@ std::string encode(const BackendProbeReport& r) {
   return out;
 }
 
+// The record a child sends as soon as its plugin has loaded: "loaded" name rank.
+std::string encode_loaded(const BackendPlugin& plugin) {
+  std::string out = "loaded";
+  out += '\0';
+  out += plugin.name();
+  out += '\0';
+  out += std::to_string(plugin.desc().speed_rank);
+  out += '\0';
+  return out;
+}
+
+// The loaded record at the start of a child's bytes: its size (0 when not
+// all there yet), and the name and rank it carries.
+size_t decode_loaded(const std::string& data, std::string& name, int& rank) {
+  const std::string marker = std::string("loaded") + '\0';
+  if (data.compare(0, marker.size(), marker) != 0) return 0;
+  const size_t name_end = data.find('\0', marker.size());
+  if (name_end == std::string::npos) return 0;
+  const size_t rank_end = data.find('\0', name_end + 1);
+  if (rank_end == std::string::npos) return 0;
+  name = data.substr(marker.size(), name_end - marker.size());
+  rank = std::atoi(data.substr(name_end + 1, rank_end - name_end - 1).c_str());
+  return rank_end + 1;
+}
+
 // False when the child's bytes are not a whole report.
-bool decode(const std::string& data, BackendProbeReport& r) {
+bool decode(const std::string& bytes, BackendProbeReport& r) {
+  std::string loaded_name;
+  int loaded_rank = 0;
+  const std::string data = bytes.substr(decode_loaded(bytes, loaded_name, loaded_rank));
   std::vector<std::string> fields;
   for (size_t start = 0; start < data.size();) {
     const size_t end = data.find('\0', start);
@@ -626,14 +675,27 @@ void set_probe_executable(fs::path executable) {
   probe_executable = std::move(executable);
 }
 
-int run_probe_child(const char* file) {
-  const std::string report = encode(probe_in_process(file));
-  for (size_t done = 0; done < report.size();) {
-    const ssize_t n = ::write(kReportFd, report.data() + done, report.size() - done);
+namespace {
+
+bool write_whole(int fd, const std::string& bytes) {
+  for (size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return 1;
+    if (n <= 0) return false;
     done += size_t(n);
   }
+  return true;
+}
+
+}  // namespace
+
+int run_probe_child(const char* file) {
+  // First what loading told (name and rank: -b auto orders the candidates
+  // by it before their probes end), then the whole report.
+  const std::string report = encode(probe_in_process(file, [](const BackendPlugin& plugin) {
+    write_whole(kReportFd, encode_loaded(plugin));
+  }));
+  if (!write_whole(kReportFd, report)) return 1;
   std::fflush(nullptr);
   std::_Exit(0);  // no static destructors, no dlclose: the plugin had its say
 }
@@ -661,5 +723,104 @@ std::vector<BackendProbeReport> probe_backend_files(const std::vector<fs::path>&
   for (size_t i = 0; i < files.size(); ++i) reports.push_back(report_of(files[i], children[i], hung[i]));
   return reports;
 }
+
+namespace {
+
+// What -b auto knows of one child so far.
+struct AutoCandidate {
+  bool loaded = false;  // its loaded record came: name and rank known
+  std::string name;
+  int rank = 0;
+  bool reported = false;  // its whole report came
+  BackendProbeReport report;
+};
+
+AutoCandidate candidate_of(const ChildProbe& child) {
+  AutoCandidate c;
+  c.loaded = decode_loaded(child.data, c.name, c.rank) > 0;
+  c.reported = decode(child.data, c.report);
+  return c;
+}
+
+// The decision once every child has loaded its plugin or ended: the fastest
+// candidate whose probe says usable, once the probes of every faster one
+// (and of an earlier file of the same name, which would shadow it) are in.
+// -1: none is usable; -3: a probe that matters is still running.
+constexpr int kUndecided = -3;
+int decide(const std::vector<ChildProbe>& children, const std::vector<std::string>& owners) {
+  std::vector<AutoCandidate> cs;
+  for (const ChildProbe& child : children) {
+    cs.push_back(candidate_of(child));
+    if (!cs.back().loaded && !child.reaped) return kUndecided;
+  }
+  std::vector<size_t> order;
+  for (size_t i = 0; i < cs.size(); ++i)
+    if (cs[i].loaded && cs[i].name == owners[i]) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return cs[a].rank > cs[b].rank; });
+  for (const size_t i : order) {
+    bool shadowed = false;
+    for (size_t j = 0; j < i; ++j) {
+      if (owners[j] != owners[i] || !cs[j].loaded || cs[j].name != owners[j]) continue;
+      if (!cs[j].reported && !children[j].reaped) return kUndecided;
+      shadowed = shadowed || (cs[j].reported && cs[j].report.error.empty());
+    }
+    if (shadowed) continue;
+    if (!cs[i].reported) {
+      if (!children[i].reaped) return kUndecided;
+      continue;  // crashed or exited in its probe
+    }
+    if (cs[i].report.error.empty() && cs[i].report.usable) return int(i);
+  }
+  return -1;
+}
+
+int pick_fastest_usable(const std::vector<fs::path>& files, const std::vector<std::string>& owners) {
+  fs::path executable;
+  {
+    std::lock_guard lock(probe_executable_mutex);
+    executable = probe_executable;
+  }
+  if (executable.empty()) return kNoProbeExecutable;
+  std::vector<ChildProbe> children;
+  try {
+    for (const fs::path& file : files) children.push_back(spawn_probe(executable, file));
+  } catch (...) {
+    kill_all(children);
+    throw;
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kProbeTimeoutSeconds);
+  for (;;) {
+    std::vector<pollfd> fds;
+    std::vector<size_t> which;
+    for (size_t i = 0; i < children.size(); ++i) {
+      try_reap(children[i]);
+      if (children[i].fd < 0) continue;
+      fds.push_back({children[i].fd, POLLIN, 0});
+      which.push_back(i);
+    }
+    const int decision = decide(children, owners);
+    if (decision != kUndecided) {
+      kill_all(children);  // the slower candidates' probes are not needed
+      return decision;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill_all(children);  // a hung probe is passed over like a crashed one
+      return std::max(decide(children, owners), -1);
+    }
+    if (cancel_requested()) {
+      kill_all(children);
+      throw_if_cancelled();
+    }
+    if (fds.empty()) {
+      ::usleep(1000);  // only exits left to wait for
+      continue;
+    }
+    if (::poll(fds.data(), fds.size(), 100) <= 0) continue;
+    for (size_t k = 0; k < fds.size(); ++k)
+      if (fds[k].revents != 0) read_some(children[which[k]]);
+  }
+}
+
+}  // namespace
 
 }  // namespace prism
