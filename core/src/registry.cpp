@@ -609,22 +609,33 @@ void try_reap(ChildProbe& child) {
   if (::waitpid(child.pid, &child.status, WNOHANG) == child.pid) child.reaped = true;
 }
 
+// Reaps the children that have ended and reads what the others sent,
+// waiting up to 100 ms for something to arrive.
+void pump(std::vector<ChildProbe>& children) {
+  std::vector<pollfd> fds;
+  std::vector<size_t> which;
+  for (size_t i = 0; i < children.size(); ++i) {
+    try_reap(children[i]);
+    if (children[i].fd < 0) continue;
+    fds.push_back({children[i].fd, POLLIN, 0});
+    which.push_back(i);
+  }
+  if (fds.empty()) {
+    ::usleep(1000);  // only exits left to wait for
+    return;
+  }
+  if (::poll(fds.data(), fds.size(), 100) <= 0) return;
+  for (size_t k = 0; k < fds.size(); ++k)
+    if (fds[k].revents != 0) read_some(children[which[k]]);
+}
+
 // Reads every child's report until each has exited, the deadline passes
 // (the rest are killed: hung) or a cancel request arrives (all killed, Cancelled).
 void collect(std::vector<ChildProbe>& children, std::vector<bool>& hung) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kProbeTimeoutSeconds);
   for (;;) {
-    std::vector<pollfd> fds;
-    std::vector<size_t> which;
-    bool running = false;
-    for (size_t i = 0; i < children.size(); ++i) {
-      try_reap(children[i]);
-      running = running || !children[i].reaped;
-      if (children[i].fd < 0) continue;
-      fds.push_back({children[i].fd, POLLIN, 0});
-      which.push_back(i);
-    }
-    if (!running) return;
+    pump(children);
+    if (std::all_of(children.begin(), children.end(), [](const ChildProbe& c) { return c.reaped; })) return;
     if (cancel_requested()) {
       kill_all(children);
       throw_if_cancelled();
@@ -634,13 +645,6 @@ void collect(std::vector<ChildProbe>& children, std::vector<bool>& hung) {
       kill_all(children);
       return;
     }
-    if (fds.empty()) {
-      ::usleep(10000);  // only exits left to wait for
-      continue;
-    }
-    if (::poll(fds.data(), fds.size(), 100) <= 0) continue;
-    for (size_t k = 0; k < fds.size(); ++k)
-      if (fds[k].revents != 0) read_some(children[which[k]]);
   }
 }
 
@@ -790,14 +794,7 @@ int pick_fastest_usable(const std::vector<fs::path>& files, const std::vector<st
   }
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kProbeTimeoutSeconds);
   for (;;) {
-    std::vector<pollfd> fds;
-    std::vector<size_t> which;
-    for (size_t i = 0; i < children.size(); ++i) {
-      try_reap(children[i]);
-      if (children[i].fd < 0) continue;
-      fds.push_back({children[i].fd, POLLIN, 0});
-      which.push_back(i);
-    }
+    pump(children);
     const int decision = decide(children, owners);
     if (decision != kUndecided) {
       kill_all(children);  // the slower candidates' probes are not needed
@@ -811,13 +808,6 @@ int pick_fastest_usable(const std::vector<fs::path>& files, const std::vector<st
       kill_all(children);
       throw_if_cancelled();
     }
-    if (fds.empty()) {
-      ::usleep(1000);  // only exits left to wait for
-      continue;
-    }
-    if (::poll(fds.data(), fds.size(), 100) <= 0) continue;
-    for (size_t k = 0; k < fds.size(); ++k)
-      if (fds[k].revents != 0) read_some(children[which[k]]);
   }
 }
 
