@@ -603,6 +603,23 @@ void kill_all(std::vector<ChildProbe>& children) {
   for (ChildProbe& child : children) reap(child);
 }
 
+// One child per file; none left running when one cannot be started.
+std::vector<ChildProbe> spawn_probes(const fs::path& executable, const std::vector<fs::path>& files) {
+  std::vector<ChildProbe> children;
+  try {
+    for (const fs::path& file : files) children.push_back(spawn_probe(executable, file));
+  } catch (...) {
+    kill_all(children);
+    throw;
+  }
+  return children;
+}
+
+fs::path current_probe_executable() {
+  std::lock_guard lock(probe_executable_mutex);
+  return probe_executable;
+}
+
 // Reaps a child that has closed its end of the pipe, if it has exited.
 void try_reap(ChildProbe& child) {
   if (child.reaped || child.fd >= 0) return;
@@ -705,23 +722,13 @@ int run_probe_child(const char* file) {
 }
 
 std::vector<BackendProbeReport> probe_backend_files(const std::vector<fs::path>& files) {
-  fs::path executable;
-  {
-    std::lock_guard lock(probe_executable_mutex);
-    executable = probe_executable;
-  }
+  const fs::path executable = current_probe_executable();
   std::vector<BackendProbeReport> reports;
   if (executable.empty()) {
     for (const fs::path& file : files) reports.push_back(probe_in_process(file));
     return reports;
   }
-  std::vector<ChildProbe> children;
-  try {
-    for (const fs::path& file : files) children.push_back(spawn_probe(executable, file));
-  } catch (...) {
-    kill_all(children);
-    throw;
-  }
+  std::vector<ChildProbe> children = spawn_probes(executable, files);
   std::vector<bool> hung(children.size(), false);
   collect(children, hung);
   for (size_t i = 0; i < files.size(); ++i) reports.push_back(report_of(files[i], children[i], hung[i]));
@@ -779,19 +786,9 @@ int decide(const std::vector<ChildProbe>& children, const std::vector<std::strin
 }
 
 int pick_fastest_usable(const std::vector<fs::path>& files, const std::vector<std::string>& owners) {
-  fs::path executable;
-  {
-    std::lock_guard lock(probe_executable_mutex);
-    executable = probe_executable;
-  }
+  const fs::path executable = current_probe_executable();
   if (executable.empty()) return kNoProbeExecutable;
-  std::vector<ChildProbe> children;
-  try {
-    for (const fs::path& file : files) children.push_back(spawn_probe(executable, file));
-  } catch (...) {
-    kill_all(children);
-    throw;
-  }
+  std::vector<ChildProbe> children = spawn_probes(executable, files);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(kProbeTimeoutSeconds);
   for (;;) {
     pump(children);

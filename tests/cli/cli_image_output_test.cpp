@@ -1,7 +1,6 @@
 // `prism render` to PNG or EXR without OpenImageIO, and outputs on a full
 // disk: the run fails with exit status 1, names the output, and leaves the
 // older files (image, --stats, trace CSV) byte for byte as they were.
-#include <sys/mount.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_harness.hpp"
+#include "test_support.hpp"
 #include "prism/image_file.hpp"
 
 namespace prism::cli_test {
@@ -85,32 +85,17 @@ class FullDiskOutput : public ImageOutput {
  protected:
   void SetUp() override {
     ImageOutput::SetUp();
-    if (::geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root";
-    disk_ = path("disk");
-    fs::create_directory(disk_);
-    if (::mount("tmpfs", disk_.c_str(), "tmpfs", 0, "size=64k") != 0)
-      GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
-    mounted_ = true;
+    if (const std::string why = disk.mount(path("disk")); !why.empty()) GTEST_SKIP() << why;
+    disk_ = disk.folder();
   }
   void TearDown() override {
-    if (mounted_) ::umount2(disk_.c_str(), MNT_DETACH);
+    disk.unmount();
     ImageOutput::TearDown();
   }
-  void fill() {
-    const std::string block(4096, 'x');
-    FILE* out = std::fopen((disk_ / "filler").c_str(), "wb");
-    ASSERT_NE(out, nullptr);
-    while (std::fwrite(block.data(), 1, block.size(), out) == block.size() && std::fflush(out) == 0) {
-    }
-    std::fclose(out);
-  }
-  std::vector<std::string> leftovers() const {
-    std::vector<std::string> names = list_folder(disk_);
-    names.erase(std::remove(names.begin(), names.end(), "filler"), names.end());
-    return names;
-  }
+  void fill() { ASSERT_TRUE(disk.fill()); }
+  std::vector<std::string> leftovers() const { return disk.files(); }
+  prism::test::SmallDisk disk;
   fs::path disk_;
-  bool mounted_ = false;
 };
 
 TEST_F(FullDiskOutput, AnImageIsNotReplaced) {

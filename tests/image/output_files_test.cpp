@@ -2,12 +2,10 @@
 // full disk failing the write with the older file intact, and messages that
 // name the file the caller asked for.
 #include <gtest/gtest.h>
-#include <sys/mount.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdio>
 #include <cstring>
 
@@ -101,35 +99,13 @@ class FullDisk : public OutputFiles {
  protected:
   void SetUp() override {
     OutputFiles::SetUp();
-    if (::geteuid() != 0) GTEST_SKIP() << "mounting a small tmpfs needs root";
-    disk_ = dir_ / "disk";
-    fs::create_directory(disk_);
-    if (::mount("tmpfs", disk_.c_str(), "tmpfs", 0, "size=64k") != 0)
-      GTEST_SKIP() << "cannot mount a tmpfs here: " << std::strerror(errno);
-    mounted_ = true;
+    if (const std::string why = disk.mount(dir_ / "disk"); !why.empty()) GTEST_SKIP() << why;
+    disk_ = disk.folder();
   }
-  void TearDown() override {
-    if (mounted_) ::umount2(disk_.c_str(), MNT_DETACH);
-  }
-  // Fills what is left of the disk with one file.
-  void fill() {
-    const std::string block(4096, 'x');
-    FILE* out = std::fopen((disk_ / "filler").c_str(), "wb");
-    ASSERT_NE(out, nullptr);
-    while (std::fwrite(block.data(), 1, block.size(), out) == block.size() && std::fflush(out) == 0) {
-    }
-    std::fclose(out);
-  }
-  // Everything in the disk's folder but the filler.
-  std::vector<std::string> outputs() const {
-    std::vector<std::string> names;
-    for (const auto& entry : fs::directory_iterator(disk_))
-      if (entry.path().filename() != "filler") names.push_back(entry.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
+  void fill() { ASSERT_TRUE(disk.fill()); }
+  std::vector<std::string> outputs() const { return disk.files(); }
+  prism::test::SmallDisk disk;
   fs::path disk_;
-  bool mounted_ = false;
 };
 
 TEST_F(FullDisk, AnImageIsNotReplacedAndTheErrorNamesIt) {

@@ -1,12 +1,14 @@
 #include "test_support.hpp"
 
 #include <fcntl.h>
+#include <sys/mount.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -227,6 +229,39 @@ std::string png_claiming_size(uint32_t width, uint32_t height) {
   const std::string idat("\x78\x01\x01\x01\x00\xfe\xff\x00\x00\x01\x00\x01", 12);
   return std::string("\x89PNG\r\n\x1a\n", 8) + png_chunk("IHDR", ihdr) + png_chunk("IDAT", idat) +
          png_chunk("IEND", "");
+}
+
+std::string SmallDisk::mount(const fs::path& folder) {
+  if (::geteuid() != 0) return "mounting a small tmpfs needs root";
+  folder_ = folder;
+  fs::create_directories(folder_);
+  if (::mount("tmpfs", folder_.c_str(), "tmpfs", 0, "size=64k") != 0)
+    return std::string("cannot mount a tmpfs here: ") + std::strerror(errno);
+  mounted_ = true;
+  return "";
+}
+
+void SmallDisk::unmount() {
+  if (mounted_) ::umount2(folder_.c_str(), MNT_DETACH);
+  mounted_ = false;
+}
+
+bool SmallDisk::fill() const {
+  const std::string block(4096, 'x');
+  FILE* out = std::fopen((folder_ / "filler").c_str(), "wb");
+  if (out == nullptr) return false;
+  while (std::fwrite(block.data(), 1, block.size(), out) == block.size() && std::fflush(out) == 0) {
+  }
+  std::fclose(out);
+  return true;
+}
+
+std::vector<std::string> SmallDisk::files() const {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder_))
+    if (entry.path().filename() != "filler") names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 }  // namespace prism::test

@@ -85,6 +85,29 @@ CapturedRun run_captured(const std::vector<std::string>& args, const std::vector
 // A new, empty folder for this test's files (unique per process and test).
 std::filesystem::path fresh_temp_dir();
 
+// A 64 KiB tmpfs at a folder of the test's, for full-disk tests: mounting
+// needs root, so a fixture skips with the reason mount() gives. Unmounted
+// when destroyed.
+class SmallDisk {
+ public:
+  SmallDisk() = default;
+  SmallDisk(const SmallDisk&) = delete;
+  SmallDisk& operator=(const SmallDisk&) = delete;
+  ~SmallDisk() { unmount(); }
+  void unmount();  // before the folder above it is removed
+  // Creates and mounts `folder`; empty when mounted, else why not.
+  std::string mount(const std::filesystem::path& folder);
+  const std::filesystem::path& folder() const { return folder_; }
+  // Fills what is left of the disk with one file, "filler"; false when it cannot be created.
+  bool fill() const;
+  // The names in the disk's folder but the filler, sorted.
+  std::vector<std::string> files() const;
+
+ private:
+  std::filesystem::path folder_;
+  bool mounted_ = false;
+};
+
 // The bytes of a PNG file whose header (IHDR, with a valid checksum) says
 // `width` x `height` RGB pixels but whose image data is one byte: what a
 // reader must refuse from the header alone, before allocating any pixel.
