@@ -5,7 +5,7 @@
 //
 // Geometry is double precision (GLSL 4.00 / shaderFloat64): ray origins,
 // object centres and t must survive a camera 1e6 away from a 1e-4 object,
-// which float32 cannot (shared/notes/numerics.md: the error is in o - c
+// which float32 cannot (docs/numerics.md, Float and double: the error is in o - c
 // itself). GLSL has no double atan/asin/exp/pow: uv and shading terms that
 // need them are evaluated in float, which is far inside what a texel or an
 // 8-bit pixel resolves.

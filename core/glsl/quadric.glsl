@@ -8,7 +8,7 @@
 // plugins share one GPU code path as they share one CPU code path, and the
 // GPU makes the CPU's choices.
 //
-// Method (shared/notes/numerics.md, Quadratics): origin moved to the foot of
+// Method (docs/numerics.md, Quadratics and Re-centring): origin moved to the foot of
 // the perpendicular from the local origin before b and c are formed (Wald,
 // Ray Tracing Gems II ch. 34), and again to the vertex of f along the ray
 // when the roots are close together (4ac >= b^2 / 2), roots by the stable pair c/q, q/a with the
@@ -16,7 +16,7 @@
 // nothing else, non-finite roots rejected, clip test on the point formed in
 // the re-centred frame, one Newton step onto f = 0 in surface. Double
 // precision: a camera 1e6 away from a small quadric loses o - c itself in
-// float32, which no formula recovers (numerics.md, Huge objects); only the
+// float32, which no formula recovers (docs/numerics.md, Float and double); only the
 // uv azimuth is float (prism_turn_fraction).
 //
 // QuadricShape at the record start (std430 doubles): coef[12] (A..J, two

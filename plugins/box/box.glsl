@@ -2,8 +2,8 @@
 // method runs in a frame re-centred at the foot of the perpendicular from
 // the box centre, so each slab distance (+-h - o_i)/d_i is formed from
 // numbers of the box's size; double because a camera 1e6 away from a small
-// box loses o - c itself in float32 (shared/notes/numerics.md, Huge
-// objects). An axis with d_i == 0 exactly is inside its slab or a miss (no
+// box loses o - c itself in float32 (docs/numerics.md, Float and
+// double; Box). An axis with d_i == 0 exactly is inside its slab or a miss (no
 // 0 * inf NaNs); the hit is the entry distance if it lies in (tmin, tmax],
 // else the exit distance. surface snaps the stored point onto the hit face,
 // clamps it into the face and applies the spec's argmax rule (ties

@@ -7,7 +7,7 @@
 // Method: origin re-centred at the foot of the perpendicular, stable roots,
 // clip test on the point formed in that frame, one Newton step onto the
 // surface. Double: a camera 1e6 away loses o - c itself in float32
-// (shared/notes/numerics.md, Quadratics / Huge objects); only the uv
+// (docs/numerics.md, Quadratics / Float and double); only the uv
 // azimuth is float. The record is the AxialQuadricRecord whose offsets the
 // module defines and cone.cpp static_asserts.
 //

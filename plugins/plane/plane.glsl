@@ -3,8 +3,8 @@
 // `normal` are world-space: t = dot(m, point - o) / dot(m, d), where
 // point - o is the only cancellation, exact to one rounding. Double because
 // the plane is infinite: a hit far from the camera, or a camera far from
-// `point`, loses o - point itself in float32 (shared/notes/numerics.md,
-// Huge objects). dot(m, d) == 0 exactly is a miss; no epsilon band.
+// `point`, loses o - point itself in float32 (docs/numerics.md,
+// Plane). dot(m, d) == 0 exactly is a miss; no epsilon band.
 //
 // Record (std430 doubles; offsets static_asserted in plane.cpp):
 #define PLANE_POINT 0

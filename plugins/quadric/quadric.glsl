@@ -5,7 +5,7 @@
 // with an fma discriminant, first root in (tmin, tmax] inside the clip box,
 // one Newton step onto f = 0 in surface. Double: a camera 1e6 away loses
 // o - c itself in float32, and tiny `a` must keep its accurate near root
-// (shared/notes/numerics.md, Quadratics). The record is the QuadricShape the
+// (docs/numerics.md, Quadratics). The record is the QuadricShape the
 // module reads (its offsets are static_asserted in cylinder.cpp and cone.cpp
 // against the one C++ struct). uv is (0, 0), as on the CPU.
 //

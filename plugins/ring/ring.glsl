@@ -4,7 +4,7 @@
 // formed in that frame, so the inclusive inner/outer test on
 // sqrt(x^2 + z^2) is decided on a point with error ~eps * |ring|. Double
 // because a camera 1e4 away from a thin ring loses o - c itself in float32
-// (shared/notes/numerics.md, Huge objects).
+// (docs/numerics.md, Ring).
 //
 // Record (std430 doubles; offsets static_asserted in ring.cpp):
 #define RING_INNER 0

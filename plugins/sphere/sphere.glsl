@@ -2,7 +2,7 @@
 // prism_intersect_sphere (core library) moves the origin to the foot of the
 // perpendicular and uses the robust discriminant, exactly as the CPU code;
 // double because a far camera (1e6) looking at a small sphere loses the
-// whole answer in float32 (shared/notes/numerics.md).
+// whole answer in float32 (docs/numerics.md, Sphere).
 //
 // Record (std430 doubles; offsets static_asserted in sphere.cpp):
 #define SPHERE_RADIUS 0

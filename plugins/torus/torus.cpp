@@ -1,7 +1,7 @@
 // Torus primitive: (|p|^2 + R^2 - r^2)^2 = 4 R^2 (p.x^2 + p.z^2), axis local
 // y, 0 < r < R; the core applies `center` and `rotation`.
 //
-// Numerics (why not a closed-form quartic: see shared/notes/numerics.md;
+// Numerics (why not a closed-form quartic: see docs/numerics.md, Torus;
 // closed forms lose everything for far origins, thin tubes and grazing rays)
 // 1. Bounding sphere: the ray is clipped to the sphere of radius
 //    (R + r)(1 + 1e-3) with the robust discriminant, and the origin is moved

@@ -2,7 +2,7 @@
 // double precision. Float32 is not enough here even re-centred: thin tubes
 // (r/R = 1e-3) miss 15-20 % of true hits in float32, double stays <= 0.15 %,
 // and near-axial rays give false hits inside the hole in float
-// (shared/notes/numerics.md, Torus); a far camera also loses o - c itself.
+// (docs/numerics.md, Torus); a far camera also loses o - c itself.
 // 1. Clip the ray to the bounding sphere of radius (R + r)(1 + 1e-3) with
 //    the robust discriminant and move the origin to the chord's midpoint
 //    (the foot of the perpendicular); scale by 1/R.

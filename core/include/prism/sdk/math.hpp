@@ -2,7 +2,7 @@
 //
 // Everything here is double precision and free of absolute epsilons: the
 // only exact-zero tests are the ones the spec asks for (a quadratic whose t^2
-// coefficient is exactly 0 is linear). See shared/notes/numerics.md for why
+// coefficient is exactly 0 is linear). See docs/numerics.md for why
 // each form was chosen.
 #pragma once
 
