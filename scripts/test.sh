@@ -10,7 +10,13 @@ jobs="$(nproc)"
 cmake --build build -j"$jobs"
 ctest --test-dir build --output-on-failure -j"$jobs"
 
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPRISM_SANITIZE=ON
+# -O1 -g1 for the sanitizer builds, as the sanitizers' own documentation
+# advises: the tests ran 4-5x faster than at -O0 (an Embree update test 17.7
+# -> 4.0 s, the 64 MiB scene 5.8 -> 1.2 s), and line tables keep every
+# report's file:line while the build makes far less debug information.
+sanitizer_flags=(-DCMAKE_BUILD_TYPE=Debug "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1")
+
+cmake -S . -B build-asan -G Ninja "${sanitizer_flags[@]}" -DPRISM_SANITIZE=ON
 cmake --build build-asan -j"$jobs" --target prism_unit_suite
 # LeakSanitizer is on (ASan's default). The 100,000-sphere scene (label
 # "large") is left to the main build: under ASan at -O0 it alone takes ~15 min.
@@ -33,7 +39,7 @@ scripts/fuzz.sh --seconds 20
 # ThreadSanitizer: the concurrency test only (two scenes rendered at once
 # through the core's API), with just what it loads: the core, the primitive
 # plugins and the reference and embree backends (target prism_concurrency_suite).
-cmake -S . -B build-tsan -G Ninja -DPRISM_TSAN=ON
+cmake -S . -B build-tsan -G Ninja "${sanitizer_flags[@]}" -DPRISM_TSAN=ON
 cmake --build build-tsan -j"$jobs" --target prism_concurrency_suite
 TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1" PRISM_REQUIRE_BACKENDS=reference,embree \
   build-tsan/bin/prism_concurrency_test
