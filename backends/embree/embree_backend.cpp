@@ -11,6 +11,7 @@
 #include "embree_query.hpp"
 #include "embree_update.hpp"
 #include "prism/backend.hpp"
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cpu_render.hpp"
 #include "prism/errors.hpp"
 #include "prism/primitive_abi.h"
@@ -127,15 +128,9 @@ void probe(PrismBackendProbe* out) {
 
 Backend* create() { return new EmbreeBackend(); }
 
-constexpr PrismBackendDesc kDesc = {
-    PRISM_BACKEND_ABI_VERSION,
-    sizeof(PrismBackendDesc),
-    "embree",
-    "1.0.0 (Embree " RTC_VERSION_STRING ")",
-    50,  // above the reference backend (10)
-    &probe,
-    &create,
-};
+constexpr PrismBackendDesc kDesc = backend_desc("embree", "1.0.0 (Embree " RTC_VERSION_STRING ")",
+                                                 50,  // above the reference backend (10)
+                                                 &probe, &create);
 
 }  // namespace
 }  // namespace prism::embree

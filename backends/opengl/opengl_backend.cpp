@@ -20,6 +20,7 @@
 #include "gpu_update.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 
@@ -272,7 +273,7 @@ void probe(PrismBackendProbe* out) {
 
 Backend* create() { return new OpenGLBackend(); }
 
-const PrismBackendDesc kDesc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "opengl", "1.0.0", 40, probe, create};
+constexpr PrismBackendDesc kDesc = backend_desc("opengl", "1.0.0", 40, probe, create);
 
 }  // namespace
 }  // namespace prism

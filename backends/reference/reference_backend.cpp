@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cpu_render.hpp"
 #include "prism/primitive_abi.h"
 
@@ -94,7 +95,6 @@ Backend* create() { return new ReferenceBackend(); }
 }  // namespace prism
 
 extern "C" PRISM_EXPORT const PrismBackendDesc* prism_backend_entry(void) {
-  static const PrismBackendDesc desc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "reference", "1.0.0", 10,
-                                        prism::probe, prism::create};
+  static constexpr PrismBackendDesc desc = prism::backend_desc("reference", "1.0.0", 10, prism::probe, prism::create);
   return &desc;
 }

@@ -17,6 +17,7 @@
 #include "gpu_update.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "vk_buffer.hpp"
@@ -378,7 +379,7 @@ void probe(PrismBackendProbe* out) {
 
 Backend* create() { return new VulkanBackend(); }
 
-const PrismBackendDesc kDesc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "vulkan", "1.0.0", 45, probe, create};
+constexpr PrismBackendDesc kDesc = backend_desc("vulkan", "1.0.0", 45, probe, create);
 
 }  // namespace
 }  // namespace prism

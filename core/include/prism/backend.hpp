@@ -1,6 +1,15 @@
-// The Backend interface every renderer plugin implements, and the versioned
-// C entry point through which the registry finds it. No backend-specific
-// type crosses this interface.
+// The Backend interface every renderer plugin implements, and the entry
+// point through which the registry finds it. No backend-specific type
+// crosses this interface.
+//
+// The boundary is a C++ plugin interface, not a C one: the scene, settings
+// and results that cross it are C++ types (vectors, strings, paths,
+// std::function) and `create` returns a C++ object. Only the entry symbol
+// has C linkage, so that dlsym finds it by an unmangled name. A backend
+// therefore works only with a core whose compiler, standard library and
+// type layouts are its own: the descriptor carries a fingerprint of them
+// (prism/backend_fingerprint.hpp), which the registry compares with its
+// own before it reads anything else.
 #pragma once
 
 #include <cstdint>
@@ -133,29 +142,34 @@ class Backend {
 
 }  // namespace prism
 
-extern "C" {
-
-#define PRISM_BACKEND_ABI_VERSION 4u  // 3: Backend::update; 4: RenderSettings::profile
+// 3: Backend::update; 4: RenderSettings::profile; 5: PrismBackendDesc::layout_fingerprint
+#define PRISM_BACKEND_ABI_VERSION 5u
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
-typedef struct PrismBackendProbe {
+struct PrismBackendProbe {
   int usable;          // 1: can run on this machine
   char reason[256];    // why not, when usable == 0; a short description otherwise
-} PrismBackendProbe;
+};
 
-typedef struct PrismBackendDesc {
+// What a backend plugin's entry function returns. Build it with
+// prism::backend_desc (prism/backend_fingerprint.hpp), which fills in the
+// first three members as the plugin is compiled.
+struct PrismBackendDesc {
   uint32_t abi_version;  // PRISM_BACKEND_ABI_VERSION; must stay the first member
   uint32_t desc_size;
+  // prism::backend_layout_fingerprint() as the plugin saw it; at offset 8 in
+  // every version from 5 on, checked right after abi_version.
+  uint64_t layout_fingerprint;
   const char* name;
   const char* version;
   int speed_rank;  // `-b auto` picks the usable backend with the highest rank
   void (*probe)(PrismBackendProbe* out);
   // Creates the backend; throws prism::RuntimeError when it cannot start.
   prism::Backend* (*create)();
-} PrismBackendDesc;
+};
 
+// The entry function (C linkage, named PRISM_BACKEND_ENTRY_SYMBOL).
 typedef const PrismBackendDesc* (*PrismBackendEntryFn)(void);
-}
 
 namespace prism {
 
