@@ -24,6 +24,7 @@ install(TARGETS prism_core EXPORT PrismTargets LIBRARY DESTINATION lib)
 install(FILES
   ${PROJECT_SOURCE_DIR}/core/include/prism/api.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/backend.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/stats_keys.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/errors.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/scene.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/image_io.hpp

@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 
 #include "prism/scene.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism {
 
@@ -75,11 +76,8 @@ struct TraceResult {
   glm::dvec3 normal{0};  // outward unit normal, 0 on a miss
 };
 
-// The ray kinds of BackendStats::rays_by_kind, in the order every backend
-// counts them (the CPU shader's RayKind, the GPU kernels' counters).
-inline constexpr const char* kRayKindNames[] = {"camera", "shadow", "reflect", "refract", "alpha", "shade1"};
-
-// Counters and phase times a backend reports (`--stats`).
+// Counters and phase times a backend reports (`--stats`), under the keys of
+// prism/stats_keys.hpp.
 struct BackendStats {
   std::vector<std::string> kernel_features;  // GPU backends: what was compiled in
   uint64_t rays = 0;                         // every ray traced, all kinds
@@ -104,17 +102,6 @@ struct SceneChanges {
     return !objects.empty() || objects_added_or_removed || materials || lights || textures || environment;
   }
 };
-
-// Cumulative counters every backend keeps in BackendStats::counters, so that
-// callers and tests can see what prepare() and update() did.
-namespace counter {
-inline constexpr const char* kPrepares = "prepares";                  // prepare() calls
-inline constexpr const char* kUpdates = "updates";                    // update() calls
-inline constexpr const char* kObjectsUploaded = "objects_uploaded";   // object records (re)read or (re)sent
-inline constexpr const char* kBvhBuilds = "bvh_builds";               // acceleration structures built from scratch
-inline constexpr const char* kBvhRefits = "bvh_refits";               // ... refitted in place
-inline constexpr const char* kKernelBuilds = "kernel_builds";         // GPU kernels generated and built
-}  // namespace counter
 
 // The pixels a render covers: the region, or the whole image.
 inline PixelRect render_rect(const RenderSettings& settings) {
