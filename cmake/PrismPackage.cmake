@@ -3,6 +3,8 @@
 #   P/include/prism/primitive_abi.h, P/include/prism/sdk/*.hpp (the plugin ABI)
 #   P/include/prism/api.hpp and what it includes (the library API),
 #     image_io.hpp (write_image), view_window.hpp (apps/prism: Prism::view)
+#   P/include/prism/backend_fingerprint.hpp and what it includes (a backend's
+#     descriptor and the layout fingerprint the registry checks)
 #   P/lib/cmake/Prism/PrismConfig.cmake (find_package(Prism)), exporting
 #   Prism::sdk, Prism::core, Prism::view and prism_add_primitive_plugin()
 #   (cmake/PrismConfig.cmake).
@@ -22,9 +24,20 @@ install(TARGETS prism_core EXPORT PrismTargets LIBRARY DESTINATION lib)
 install(FILES
   ${PROJECT_SOURCE_DIR}/core/include/prism/api.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/backend.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/stats_keys.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/errors.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/scene.hpp
   ${PROJECT_SOURCE_DIR}/core/include/prism/image_io.hpp
+  DESTINATION include/prism)
+# A backend's descriptor (prism::backend_desc) and the layout fingerprint the
+# registry checks it by, with the headers of the types it covers.
+install(FILES
+  ${PROJECT_SOURCE_DIR}/core/include/prism/backend_fingerprint.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/layout_fingerprint.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/cancel.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/cpu_render.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/geometry.hpp
+  ${PROJECT_SOURCE_DIR}/core/include/prism/registry.hpp
   DESTINATION include/prism)
 
 install(EXPORT PrismTargets NAMESPACE Prism:: DESTINATION lib/cmake/Prism)

@@ -11,6 +11,7 @@
 #include "embree_query.hpp"
 #include "embree_update.hpp"
 #include "prism/backend.hpp"
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cpu_render.hpp"
 #include "prism/errors.hpp"
 #include "prism/primitive_abi.h"
@@ -72,8 +73,8 @@ class EmbreeBackend final : public Backend {
     }
     stats_.counters[counter::kObjectsUploaded] += double(changes.objects.size());
     stats_.counters[counter::kBvhRefits] += result == UpdateResult::kUpdated ? 1 : 0;
-    stats_.counters["scene_bytes"] = double(device_.bytes()) + double(scene.packed_object_bytes());
-    stats_.ms["update"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats_.counters[counter::kSceneBytes] = double(device_.bytes()) + double(scene.packed_object_bytes());
+    stats_.ms[ms_key::kUpdate] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   }
 
   Image render(const RenderSettings& settings) override {
@@ -106,11 +107,11 @@ class EmbreeBackend final : public Backend {
     scene_ = nullptr;
     const auto start = std::chrono::steady_clock::now();
     query_ = std::make_unique<EmbreeQuery>(scene, device_);
-    stats_.info["precision"] = "double";
-    stats_.counters["scene_bytes"] = double(device_.bytes()) + double(scene.packed_object_bytes());
+    stats_.info[info_key::kPrecision] = "double";
+    stats_.counters[counter::kSceneBytes] = double(device_.bytes()) + double(scene.packed_object_bytes());
     stats_.counters[counter::kObjectsUploaded] += double(scene.objects.size());
     stats_.counters[counter::kBvhBuilds] += query_->bvh_object_count() > 0 ? 1 : 0;
-    stats_.ms["build"] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats_.ms[ms_key::kBuild] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     scene_ = &scene;
   }
 
@@ -127,15 +128,9 @@ void probe(PrismBackendProbe* out) {
 
 Backend* create() { return new EmbreeBackend(); }
 
-constexpr PrismBackendDesc kDesc = {
-    PRISM_BACKEND_ABI_VERSION,
-    sizeof(PrismBackendDesc),
-    "embree",
-    "1.0.0 (Embree " RTC_VERSION_STRING ")",
-    50,  // above the reference backend (10)
-    &probe,
-    &create,
-};
+constexpr PrismBackendDesc kDesc = backend_desc("embree", "1.0.0 (Embree " RTC_VERSION_STRING ")",
+                                                 50,  // above the reference backend (10)
+                                                 &probe, &create);
 
 }  // namespace
 }  // namespace prism::embree

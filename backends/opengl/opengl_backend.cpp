@@ -20,6 +20,7 @@
 #include "gpu_update.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 
@@ -82,8 +83,8 @@ gl::Buffer buffer_of(const std::vector<T>& v) {
 class OpenGLBackend : public Backend {
  public:
   OpenGLBackend() : context_(std::make_unique<gl::EglContext>()) {
-    stats_.info["device"] = context_->description();
-    stats_.info["precision"] = "double geometry, float32 shading";
+    stats_.info[info_key::kDevice] = context_->description();
+    stats_.info[info_key::kPrecision] = "double geometry, float32 shading";
     gpu::start_counters(stats_);
   }
 
@@ -107,10 +108,10 @@ class OpenGLBackend : public Backend {
     }
     glFinish();
     check_gl("scene upload");
-    stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+    stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
     gpu::count_prepare(stats_, p);
     state_ = std::move(state);
-    stats_.ms["build"] = ms_since(start);
+    stats_.ms[ms_key::kBuild] = ms_since(start);
   }
 
   // Packs what changed in place and sends only that; the programs are kept
@@ -128,13 +129,13 @@ class OpenGLBackend : public Backend {
       if (u.kernel) state_->drop_programs();
       glFinish();
       check_gl("scene update");
-      stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+      stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
       gpu::count_update(stats_, u);
     } catch (...) {
       state_.reset();
       throw;
     }
-    stats_.ms["update"] = ms_since(start);
+    stats_.ms[ms_key::kUpdate] = ms_since(start);
   }
 
   Image render(const RenderSettings& settings) override {
@@ -171,7 +172,7 @@ class OpenGLBackend : public Backend {
       gpu::add_ray_counters(stats_, counters);
       if (settings.progress) settings.progress(double(t + 1) / double(tiles.size()));
     }
-    stats_.ms["render"] += ms_since(start);
+    stats_.ms[ms_key::kRender] += ms_since(start);
     return image;
   }
 
@@ -201,8 +202,8 @@ class OpenGLBackend : public Backend {
       gpu::read_trace_records(io, std::span(results).subspan(first, n));
     }
     stats_.rays += rays.size();
-    stats_.rays_by_kind["trace"] += rays.size();
-    stats_.ms["render"] += ms_since(start);
+    stats_.rays_by_kind[ray_kind::kTrace] += rays.size();
+    stats_.ms[ms_key::kRender] += ms_since(start);
     return results;
   }
 
@@ -214,7 +215,7 @@ class OpenGLBackend : public Backend {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     if (max_block <= 0) return;  // the query failed: the upload's own error is all there is
-    stats_.counters["max_storage_buffer_bytes"] = double(max_block);
+    stats_.counters[counter::kMaxStorageBufferBytes] = double(max_block);
     gpu::check_buffer_limits(p, source, uint64_t(max_block), "this OpenGL driver's GL_MAX_SHADER_STORAGE_BLOCK_SIZE");
   }
 
@@ -229,12 +230,12 @@ class OpenGLBackend : public Backend {
     auto start = std::chrono::steady_clock::now();
     warm_up(program);
     stats_.kernel_features = kernel.features;
-    stats_.ms["compile"] += build.ms + ms_since(start);
+    stats_.ms[ms_key::kCompile] += build.ms + ms_since(start);
     stats_.counters[counter::kKernelBuilds] += 1;
-    stats_.counters["gl_compile_shader_calls"] += build.compile_calls;
-    stats_.counters["gl_link_program_calls"] += build.link_calls;
-    stats_.info["program_cache"] = build.cache;
-    if (!build.cache_file.empty()) stats_.info["program_cache_file"] = build.cache_file.string();
+    stats_.counters[counter::kGlCompileShaderCalls] += build.compile_calls;
+    stats_.counters[counter::kGlLinkProgramCalls] += build.link_calls;
+    stats_.info[info_key::kProgramCache] = build.cache;
+    if (!build.cache_file.empty()) stats_.info[info_key::kProgramCacheFile] = build.cache_file.string();
     return program;
   }
 
@@ -272,7 +273,7 @@ void probe(PrismBackendProbe* out) {
 
 Backend* create() { return new OpenGLBackend(); }
 
-const PrismBackendDesc kDesc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "opengl", "1.0.0", 40, probe, create};
+constexpr PrismBackendDesc kDesc = backend_desc("opengl", "1.0.0", 40, probe, create);
 
 }  // namespace
 }  // namespace prism

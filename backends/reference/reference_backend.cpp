@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cpu_render.hpp"
 #include "prism/primitive_abi.h"
 
@@ -52,11 +53,11 @@ class ReferenceBackend : public Backend {
   void prepare(const Scene& scene) override {
     scene_ = &scene;
     query_ = std::make_unique<BruteForceQuery>(scene);
-    stats_.info["precision"] = "double";
-    stats_.counters["scene_bytes"] = double(scene.packed_object_bytes());
+    stats_.info[info_key::kPrecision] = "double";
+    stats_.counters[counter::kSceneBytes] = double(scene.packed_object_bytes());
     stats_.counters[counter::kPrepares] += 1;
     stats_.counters[counter::kObjectsUploaded] += double(scene.objects.size());
-    stats_.ms["build"] = 0.0;  // nothing to build: that is the point of this backend
+    stats_.ms[ms_key::kBuild] = 0.0;  // nothing to build: that is the point of this backend
   }
 
   // The query reads the scene on every ray, so an edit needs nothing: the
@@ -66,7 +67,7 @@ class ReferenceBackend : public Backend {
     stats_.counters[counter::kUpdates] += 1;
     if (scene_ != &scene) query_ = std::make_unique<BruteForceQuery>(scene);
     scene_ = &scene;
-    stats_.counters["scene_bytes"] = double(scene.packed_object_bytes());
+    stats_.counters[counter::kSceneBytes] = double(scene.packed_object_bytes());
     stats_.counters[counter::kObjectsUploaded] +=
         double(changes.objects_added_or_removed ? scene.objects.size() : changes.objects.size());
   }
@@ -94,7 +95,6 @@ Backend* create() { return new ReferenceBackend(); }
 }  // namespace prism
 
 extern "C" PRISM_EXPORT const PrismBackendDesc* prism_backend_entry(void) {
-  static const PrismBackendDesc desc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "reference", "1.0.0", 10,
-                                        prism::probe, prism::create};
+  static constexpr PrismBackendDesc desc = prism::backend_desc("reference", "1.0.0", 10, prism::probe, prism::create);
   return &desc;
 }

@@ -17,6 +17,7 @@
 #include "gpu_update.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "vk_buffer.hpp"
@@ -58,10 +59,10 @@ class VulkanBackend : public Backend {
       : context_(std::make_unique<vk::Context>()),
         commands_(std::make_unique<vk::Commands>(*context_)),
         layout_(std::make_unique<vk::PipelineLayout>(*context_)) {
-    stats_.info["device"] = context_->description();
-    stats_.info["precision"] = "double geometry, float32 shading";
-    stats_.info["validation"] = context_->validation() ? "on" : "off";
-    stats_.counters["max_storage_buffer_bytes"] = double(context_->properties().limits.maxStorageBufferRange);
+    stats_.info[info_key::kDevice] = context_->description();
+    stats_.info[info_key::kPrecision] = "double geometry, float32 shading";
+    stats_.info[info_key::kValidation] = context_->validation() ? "on" : "off";
+    stats_.counters[counter::kMaxStorageBufferBytes] = double(context_->properties().limits.maxStorageBufferRange);
     gpu::start_counters(stats_);
     create_descriptor_pool();
   }
@@ -81,10 +82,10 @@ class VulkanBackend : public Backend {
     const gpu::PackedScene& p = s->packed;
     check_limits(p, scene.source);
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) s->buffers[b] = upload(gpu::scene_buffer(p, b));
-    stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+    stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
     gpu::count_prepare(stats_, p);
     scene_ = std::move(s);
-    stats_.ms["build"] = ms_since(start);
+    stats_.ms[ms_key::kBuild] = ms_since(start);
     check_validation("scene upload");
   }
 
@@ -110,13 +111,13 @@ class VulkanBackend : public Backend {
       }
       vk::write_storage(*context_, *commands_, writes, "update of the scene");
       if (u.kernel) drop_pipelines();
-      stats_.counters["scene_bytes"] = double(p.buffer_bytes());
+      stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
       gpu::count_update(stats_, u);
     } catch (...) {
       release_scene();
       throw;
     }
-    stats_.ms["update"] = ms_since(start);
+    stats_.ms[ms_key::kUpdate] = ms_since(start);
     check_validation("scene update");
   }
 
@@ -151,7 +152,7 @@ class VulkanBackend : public Backend {
       gpu::add_ray_counters(stats_, header);
       if (settings.progress) settings.progress(double(t + 1) / double(tiles.size()));
     }
-    stats_.ms["render"] += ms_since(start);
+    stats_.ms[ms_key::kRender] += ms_since(start);
     check_validation("rendering");
     return image;
   }
@@ -180,15 +181,16 @@ class VulkanBackend : public Backend {
       gpu::read_trace_records({static_cast<const GpuTraceRay*>(staging.mapped()), n}, std::span(results).subspan(first, n));
     }
     stats_.rays += rays.size();
-    stats_.rays_by_kind["trace"] += rays.size();
-    stats_.ms["render"] += ms_since(start);
+    stats_.rays_by_kind[ray_kind::kTrace] += rays.size();
+    stats_.ms[ms_key::kRender] += ms_since(start);
     check_validation("tracing");
     return results;
   }
 
   BackendStats stats() const override {
     BackendStats s = stats_;
-    if (context_->validation()) s.counters["vulkan_validation_messages"] = double(context_->validation_message_count());
+    if (context_->validation())
+      s.counters[counter::kVulkanValidationMessages] = double(context_->validation_message_count());
     return s;
   }
 
@@ -247,15 +249,15 @@ class VulkanBackend : public Backend {
     auto start = std::chrono::steady_clock::now();
     warm_up(slot);
     stats_.kernel_features = source.features;
-    stats_.ms["compile"] += build.ms + ms_since(start);
-    stats_.counters["glslang_compile_calls"] += build.glslang_compile_calls;
+    stats_.ms[ms_key::kCompile] += build.ms + ms_since(start);
+    stats_.counters[counter::kGlslangCompileCalls] += build.glslang_compile_calls;
     // Where compile time goes: glslang, the driver's pipeline creation, and
     // the first dispatch (where a JIT driver such as lavapipe generates code).
-    stats_.counters["glslang_ms"] += build.glslang_ms;
-    stats_.counters["pipeline_create_ms"] += build.driver_ms;
-    stats_.counters["first_dispatch_ms"] += ms_since(start);
-    stats_.info["program_cache"] = build.cache;
-    if (!build.cache_file.empty()) stats_.info["program_cache_file"] = build.cache_file.string();
+    stats_.counters[counter::kGlslangMs] += build.glslang_ms;
+    stats_.counters[counter::kPipelineCreateMs] += build.driver_ms;
+    stats_.counters[counter::kFirstDispatchMs] += ms_since(start);
+    stats_.info[info_key::kProgramCache] = build.cache;
+    if (!build.cache_file.empty()) stats_.info[info_key::kProgramCacheFile] = build.cache_file.string();
     check_validation("kernel build");
     return slot;
   }
@@ -378,7 +380,7 @@ void probe(PrismBackendProbe* out) {
 
 Backend* create() { return new VulkanBackend(); }
 
-const PrismBackendDesc kDesc = {PRISM_BACKEND_ABI_VERSION, sizeof(PrismBackendDesc), "vulkan", "1.0.0", 45, probe, create};
+constexpr PrismBackendDesc kDesc = backend_desc("vulkan", "1.0.0", 45, probe, create);
 
 }  // namespace
 }  // namespace prism

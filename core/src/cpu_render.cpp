@@ -110,9 +110,9 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   add_counts(stats, total);
   if (settings.profile) {
     for (int phase = 0; phase < kPhases; ++phase)
-      stats.ms[std::string("profile.") + kPhaseNames[phase]] += total_profile.ms[size_t(phase)];
+      stats.ms[std::string(ms_key::kProfilePrefix) + kPhaseNames[phase]] += total_profile.ms[size_t(phase)];
   }
-  stats.ms["render"] += ms_since(start);
+  stats.ms[ms_key::kRender] += ms_since(start);
   return image;
 }
 
@@ -140,8 +140,8 @@ std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
   }
   throw_if_cancelled();  // a plugin fault in the last rays (request_stop_for_fault)
   stats.rays += rays.size();
-  stats.rays_by_kind["trace"] += rays.size();
-  stats.ms["render"] += ms_since(start);
+  stats.rays_by_kind[ray_kind::kTrace] += rays.size();
+  stats.ms[ms_key::kRender] += ms_since(start);
   return results;
 }
 

@@ -17,6 +17,7 @@
 #include <set>
 #include <string_view>
 
+#include "prism/backend_fingerprint.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "quoting.hpp"
@@ -110,6 +111,14 @@ std::string primitive_desc_problem(const PrismPrimitiveDesc& d) {
   return "";
 }
 
+// A backend plugin whose layout fingerprint is not the core's: compiled
+// against other headers, or by another compiler or standard library.
+std::string foreign_build_message(const fs::path& plugin) {
+  return plugin.filename().string() +
+         " was built against a different Prism, compiler or standard library than this Prism"
+         " (its layout fingerprint differs); rebuild it against this Prism's SDK";
+}
+
 std::string join_paths(const std::vector<fs::path>& paths) {
   std::vector<std::string> items;
   for (const auto& p : paths) items.push_back(p.string());
@@ -169,6 +178,12 @@ std::shared_ptr<const BackendPlugin> load_backend_plugin(const fs::path& path, s
   if (desc->abi_version != PRISM_BACKEND_ABI_VERSION) {
     error = "ABI version " + std::to_string(desc->abi_version) + ", this build of Prism needs " +
             std::to_string(PRISM_BACKEND_ABI_VERSION);
+    return nullptr;
+  }
+  // Before anything else of the descriptor is read: past its first 16 bytes,
+  // a plugin of another layout may mean something else by every member.
+  if (desc->layout_fingerprint != backend_layout_fingerprint()) {
+    error = foreign_build_message(path);
     return nullptr;
   }
   if (desc->desc_size < sizeof(PrismBackendDesc) || desc->desc_size > kMaxDescSize || !plausible_name(desc->name) ||

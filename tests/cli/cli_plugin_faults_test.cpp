@@ -50,7 +50,8 @@ class FaultyPlugins : public CliTest {
     for (const auto& entry : fs::directory_iterator(bad_plugin_folder())) {
       const std::string file = entry.path().filename().string();
       if (file.find("_wrongabi") == std::string::npos && file.find("_noentry") == std::string::npos &&
-          file.find("_badbounds") == std::string::npos && file != "libprism_backend_throwing.so")
+          file.find("_badbounds") == std::string::npos && file.find("_foreignbuild") == std::string::npos &&
+          file != "libprism_backend_throwing.so")
         fs::copy_file(entry.path(), plugins_ / file);
     }
     for (const Fault& f : kPrimitiveFaults)

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "cli_harness.hpp"
+#include "prism/registry.hpp"
 
 namespace prism::cli_test {
 namespace {
@@ -49,8 +50,8 @@ class PluginFaults : public CliTest {
     CliTest::SetUp();
     plugins_ = path("plugins");
     fs::create_directory(plugins_);
-    for (const char* file :
-         {"libprism_primitive_wrongabi.so", "libprism_primitive_noentry.so", "libprism_backend_wrongabi.so"}) {
+    for (const char* file : {"libprism_primitive_wrongabi.so", "libprism_primitive_noentry.so",
+                             "libprism_backend_wrongabi.so", "libprism_backend_foreignbuild.so"}) {
       ASSERT_TRUE(fs::exists(bad_plugin_folder() / file)) << bad_plugin_folder() / file << " is not built";
       fs::copy_file(bad_plugin_folder() / file, plugins_ / file);
     }
@@ -198,6 +199,43 @@ TEST_F(PluginFaults, AutoBackendSkipsWrongAbiBackend) {
   EXPECT_TRUE(fs::exists(path("out.png")));
   const std::string stats = read_file(path("stats.json"));
   EXPECT_EQ(stats.find("wrongabi"), std::string::npos) << stats;
+}
+
+// What the registry says of a backend whose layout fingerprint is not the core's.
+constexpr const char* kForeignBuildError =
+    "libprism_backend_foreignbuild.so was built against a different Prism, compiler or standard library than this "
+    "Prism (its layout fingerprint differs); rebuild it against this Prism's SDK";
+
+TEST_F(PluginFaults, LoadingABackendOfAnotherBuildIsRefused) {
+  std::string error;
+  EXPECT_EQ(load_backend_plugin(plugins_ / "libprism_backend_foreignbuild.so", error), nullptr);
+  EXPECT_EQ(error, kForeignBuildError);
+}
+
+TEST_F(PluginFaults, ListReportsABackendOfAnotherBuild) {
+  RunResult r = run_with_plugins({"list"});
+  ASSERT_TRUE(ExitedWith(r, 0));
+  EXPECT_EQ(entry(section(r.out, "backends:"), "foreignbuild"),
+            std::string("  foreignbuild  failed to load: ") + kForeignBuildError + " (" +
+                (plugins_ / "libprism_backend_foreignbuild.so").string() + ")")
+      << r;
+}
+
+TEST_F(PluginFaults, NamedBackendOfAnotherBuildIsRejected) {
+  RunResult r = run_with_plugins({"render", scene_, "-b", "foreignbuild", "-o", path("out.png").string()});
+  EXPECT_TRUE(ExitedWith(r, 2));
+  EXPECT_TRUE(StderrHas(r, {"the backend 'foreignbuild' failed to load: " +
+                                (plugins_ / "libprism_backend_foreignbuild.so").string() + ": " + kForeignBuildError}));
+  EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
+// -b auto passes over it too (it claims the highest speed rank of all).
+TEST_F(PluginFaults, AutoBackendSkipsBackendOfAnotherBuild) {
+  RunResult r = run_with_plugins({"render", scene_, "-o", path("out.png").string(), "--stats",
+                                  path("stats.json").string()});
+  ASSERT_TRUE(ExitedWith(r, 0));
+  EXPECT_TRUE(fs::exists(path("out.png")));
+  EXPECT_EQ(read_file(path("stats.json")).find("foreignbuild"), std::string::npos);
 }
 
 // A folder in PRISM_PLUGIN_PATH that does not exist, and empty entries, are harmless.

@@ -1,6 +1,15 @@
-// The Backend interface every renderer plugin implements, and the versioned
-// C entry point through which the registry finds it. No backend-specific
-// type crosses this interface.
+// The Backend interface every renderer plugin implements, and the entry
+// point through which the registry finds it. No backend-specific type
+// crosses this interface.
+//
+// The boundary is a C++ plugin interface, not a C one: the scene, settings
+// and results that cross it are C++ types (vectors, strings, paths,
+// std::function) and `create` returns a C++ object. Only the entry symbol
+// has C linkage, so that dlsym finds it by an unmangled name. A backend
+// therefore works only with a core whose compiler, standard library and
+// type layouts are its own: the descriptor carries a fingerprint of them
+// (prism/backend_fingerprint.hpp), which the registry compares with its
+// own before it reads anything else.
 #pragma once
 
 #include <cstdint>
@@ -17,6 +26,7 @@
 #include <glm/glm.hpp>
 
 #include "prism/scene.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism {
 
@@ -66,11 +76,8 @@ struct TraceResult {
   glm::dvec3 normal{0};  // outward unit normal, 0 on a miss
 };
 
-// The ray kinds of BackendStats::rays_by_kind, in the order every backend
-// counts them (the CPU shader's RayKind, the GPU kernels' counters).
-inline constexpr const char* kRayKindNames[] = {"camera", "shadow", "reflect", "refract", "alpha", "shade1"};
-
-// Counters and phase times a backend reports (`--stats`).
+// Counters and phase times a backend reports (`--stats`), under the keys of
+// prism/stats_keys.hpp.
 struct BackendStats {
   std::vector<std::string> kernel_features;  // GPU backends: what was compiled in
   uint64_t rays = 0;                         // every ray traced, all kinds
@@ -95,17 +102,6 @@ struct SceneChanges {
     return !objects.empty() || objects_added_or_removed || materials || lights || textures || environment;
   }
 };
-
-// Cumulative counters every backend keeps in BackendStats::counters, so that
-// callers and tests can see what prepare() and update() did.
-namespace counter {
-inline constexpr const char* kPrepares = "prepares";                  // prepare() calls
-inline constexpr const char* kUpdates = "updates";                    // update() calls
-inline constexpr const char* kObjectsUploaded = "objects_uploaded";   // object records (re)read or (re)sent
-inline constexpr const char* kBvhBuilds = "bvh_builds";               // acceleration structures built from scratch
-inline constexpr const char* kBvhRefits = "bvh_refits";               // ... refitted in place
-inline constexpr const char* kKernelBuilds = "kernel_builds";         // GPU kernels generated and built
-}  // namespace counter
 
 // The pixels a render covers: the region, or the whole image.
 inline PixelRect render_rect(const RenderSettings& settings) {
@@ -133,29 +129,34 @@ class Backend {
 
 }  // namespace prism
 
-extern "C" {
-
-#define PRISM_BACKEND_ABI_VERSION 4u  // 3: Backend::update; 4: RenderSettings::profile
+// 3: Backend::update; 4: RenderSettings::profile; 5: PrismBackendDesc::layout_fingerprint
+#define PRISM_BACKEND_ABI_VERSION 5u
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
-typedef struct PrismBackendProbe {
+struct PrismBackendProbe {
   int usable;          // 1: can run on this machine
   char reason[256];    // why not, when usable == 0; a short description otherwise
-} PrismBackendProbe;
+};
 
-typedef struct PrismBackendDesc {
+// What a backend plugin's entry function returns. Build it with
+// prism::backend_desc (prism/backend_fingerprint.hpp), which fills in the
+// first three members as the plugin is compiled.
+struct PrismBackendDesc {
   uint32_t abi_version;  // PRISM_BACKEND_ABI_VERSION; must stay the first member
   uint32_t desc_size;
+  // prism::backend_layout_fingerprint() as the plugin saw it; at offset 8 in
+  // every version from 5 on, checked right after abi_version.
+  uint64_t layout_fingerprint;
   const char* name;
   const char* version;
   int speed_rank;  // `-b auto` picks the usable backend with the highest rank
   void (*probe)(PrismBackendProbe* out);
   // Creates the backend; throws prism::RuntimeError when it cannot start.
   prism::Backend* (*create)();
-} PrismBackendDesc;
+};
 
+// The entry function (C linkage, named PRISM_BACKEND_ENTRY_SYMBOL).
 typedef const PrismBackendDesc* (*PrismBackendEntryFn)(void);
-}
 
 namespace prism {
 
