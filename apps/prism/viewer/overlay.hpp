@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "bitmap_font.hpp"
 
@@ -41,8 +42,21 @@ int overlay_scale(int window_width);
 // Height in pixels of the band the overlay covers at `scale`.
 constexpr int overlay_height(int scale) { return (kGlyphHeight + 2 * kOverlayPadding) * scale; }
 
+// Rows between two lines of text, in font pixels.
+constexpr int kOverlayLineGap = 2;
+
+// Height in pixels of a band of `lines` lines at `scale`.
+constexpr int overlay_height(int lines, int scale) {
+  return (lines * kGlyphHeight + (lines - 1) * kOverlayLineGap + 2 * kOverlayPadding) * scale;
+}
+
 // The band: black at alpha 160 behind white text, as wide as the text plus
 // padding but at most `max_width` (the window's width).
 Rgba8Image overlay_image(const std::string& text, int scale, int max_width);
+// The same with one line of text under the other (the status line, then the keys H shows).
+Rgba8Image overlay_image(const std::vector<std::string>& lines, int scale, int max_width);
+
+// What each key does, one line each, for the list H shows.
+const std::vector<std::string>& key_help_lines();
 
 }  // namespace prism::viewer
