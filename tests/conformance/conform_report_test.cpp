@@ -377,6 +377,19 @@ TEST(ConformSummary, PerBackendOverTheRun) {
   EXPECT_EQ(fastest_line(s), "fastest backend that passes here: good");
 }
 
+TEST(ConformSummary, InResultsJson) {
+  const fs::path dir = prism::test::fresh_temp_dir();
+  write_results_json(synthetic_run(), dir / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(read_text(dir / "results.json"));
+  EXPECT_EQ(json["fastest_passing"], "good");
+  ASSERT_EQ(json["backends"].size(), 3u);
+  EXPECT_EQ(json["backends"][1]["backend"], "bad");
+  EXPECT_EQ(json["backends"][1]["failed"], 2);
+  EXPECT_EQ(json["backends"][1]["first_frame_ms"], 144.0);
+  EXPECT_EQ(json["backends"][1]["passes"], false);
+  EXPECT_EQ(json["scenes"][0]["backends"][1]["first_frame_ms"], 144.0);
+}
+
 TEST(ConformSummary, NoPassingBackend) {
   RunResult run = synthetic_run();
   for (SceneResult& scene : run.scenes) scene.backends = {bad_backend(), skipped_backend()};

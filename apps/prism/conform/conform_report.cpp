@@ -194,9 +194,25 @@ Json to_json(const BackendResult& b) {
           {"precision", b.precision},
           {"render_ms", number(b.render_ms)},
           {"compile_ms", number(b.compile_ms)},
+          {"prepare_ms", number(b.prepare_ms)},
+          {"first_frame_ms", number(b.first_frame_ms())},
           {"metrics", to_json(b.metrics)},
           {"attribution", to_json_array(b.attribution)},
           {"sweep", to_json_array(b.sweep)}};
+}
+
+Json to_json(const BackendSummary& s) {
+  return {{"backend", s.backend},
+          {"passed", s.passed},
+          {"failed", s.failed},
+          {"errors", s.errors},
+          {"skipped", s.skipped},
+          {"speedup", number(s.speedup)},
+          {"worst_max_error", number(s.worst_max_error)},
+          {"worst_rms_error", number(s.worst_rms_error)},
+          {"compile_ms", number(s.compile_ms)},
+          {"first_frame_ms", number(s.first_frame_ms)},
+          {"passes", s.passes()}};
 }
 
 Json to_json(const SceneResult& s) {
@@ -923,10 +939,16 @@ Image heat_map(const Image& reference, const Image& image, float threshold) {
 void write_results_json(const RunResult& run, const fs::path& file) {
   Json scenes = Json::array();
   for (const SceneResult& scene : run.scenes) scenes.push_back(to_json(scene));
+  const std::vector<BackendSummary> summaries = summarize(run);
+  Json backends = Json::array();
+  for (const BackendSummary& s : summaries) backends.push_back(to_json(s));
+  const std::string fastest = fastest_passing(summaries);
   const Json root = {{"started", run.started},
                      {"wall_ms", number(run.wall_ms)},
                      {"passed", run.passed()},
                      {"caps", to_json(run.caps)},
+                     {"fastest_passing", fastest.empty() ? Json(nullptr) : Json(fastest)},
+                     {"backends", std::move(backends)},
                      {"scenes", std::move(scenes)}};
   write_text_file_atomically(file, root.dump(2) + "\n");
 }
