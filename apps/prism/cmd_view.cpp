@@ -260,8 +260,10 @@ void Viewer::render(int spp) {
 void Viewer::draw() {
   const viewer::Rgba8Image pixels{frame_.width, frame_.height, viewer::to_rgba8(frame_)};
   const int overlay_scale = viewer::overlay_scale(fb_width_);
-  std::vector<std::string> lines = {viewer::status_line(rate_, choice_.name, frame_.width, frame_.height,
-                                                        viewer::chars_that_fit(fb_width_, overlay_scale))};
+  const int max_chars = viewer::chars_that_fit(fb_width_, overlay_scale);
+  std::vector<std::string> lines = {
+      viewer::with_refinement(viewer::status_line(rate_, choice_.name, frame_.width, frame_.height, max_chars),
+                              refinement_.shown_spp(), refinement_.target_spp(), max_chars)};
   if (show_help_) lines.insert(lines.end(), viewer::key_help_lines().begin(), viewer::key_help_lines().end());
   display_.draw(pixels, viewer::overlay_image(lines, overlay_scale, fb_width_), fb_width_, fb_height_);
   if (!args_.capture.empty()) {

@@ -278,7 +278,7 @@ std::string line_starting(const std::string& text, const std::string& prefix) {
 
 // Left alone, the viewer renders the view at 1, 2 and 4 spp (the scene's),
 // which is `prism render`'s image, and then nothing more: keys that change
-// nothing (P once refined, C, H) and a second of waiting add no frame. C
+// nothing (P, C, H) and a second of waiting add no frame. C
 // prints a camera member the loader reads as the scene's own camera.
 TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
   if (!prism::test::require_backend_or_skip("reference")) return;
@@ -301,6 +301,8 @@ TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
   EXPECT_EQ(differing_pixels(shown, rendered, 0, kHeight, &where), 0) << "first difference at " << where;
 
   std::this_thread::sleep_for(std::chrono::seconds(1));
+  x.tap_key(window, "p");  // the frame is final: saved at once, nothing rendered
+  ASSERT_TRUE(wait_for_file(work_ / "prism-view-2.png", 60)) << child.wait(1);
   x.tap_key(window, "c");
   x.tap_key(window, "h");
   std::this_thread::sleep_for(std::chrono::milliseconds(300));

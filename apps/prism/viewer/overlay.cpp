@@ -46,6 +46,12 @@ std::string status_line(const FrameRate& rate, const std::string& backend, int w
   return text[2];
 }
 
+std::string with_refinement(const std::string& status, int shown_spp, int target_spp, int max_chars) {
+  if (target_spp <= 1) return status;
+  const std::string longer = status + " " + std::to_string(shown_spp) + "/" + std::to_string(target_spp) + " SPP";
+  return int(longer.size()) <= max_chars ? longer : status;
+}
+
 int chars_that_fit(int pixels, int scale) {
   // n characters take (n * advance - 1 + 2 * padding) * scale pixels.
   return std::max(0, (pixels / scale - 2 * kOverlayPadding + (kGlyphAdvance - kGlyphWidth)) / kGlyphAdvance);

@@ -31,6 +31,10 @@ class FrameRate {
 // (the most compact one, "25FPS 40MS embree 160x90", when none does).
 std::string status_line(const FrameRate& rate, const std::string& backend, int width, int height, int max_chars);
 
+// The status line with the refinement's progress, "... 4/16 SPP", when the
+// scene has more than 1 spp and it fits in `max_chars`; else `status` alone.
+std::string with_refinement(const std::string& status, int shown_spp, int target_spp, int max_chars);
+
 // How many characters fit across `pixels` at `scale`, padding included.
 int chars_that_fit(int pixels, int scale);
 
