@@ -67,9 +67,17 @@ void check_objects_in_view(const Scene& scene, std::vector<std::string>& warning
                        " more objects entirely behind the camera");
 }
 
+// Mirrors and glass show what is around them (a sky box) without any light.
+bool needs_light(const Material& material) { return material.reflect < 1 && !material.dielectric(); }
+
 void check_lighting(const Scene& scene, std::vector<std::string>& warnings) {
-  if (scene.objects.empty() || !scene.lights.empty() || scene.ambient != glm::dvec3(0)) return;
-  warnings.push_back("lights: the scene has no lights and no ambient, so its objects render black");
+  if (!scene.lights.empty() || scene.ambient != glm::dvec3(0)) return;
+  for (const Object& object : scene.objects) {
+    if (!needs_light(scene.materials[size_t(object.material)])) continue;
+    warnings.push_back("lights: the scene has no lights and no ambient, so objects other than mirrors and glass "
+                       "render black");
+    return;
+  }
 }
 
 }  // namespace

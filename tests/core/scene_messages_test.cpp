@@ -111,12 +111,17 @@ TEST(SceneWarnings, NoneForAnOrdinaryScene) {
 
 TEST(SceneWarnings, NoLightAndNoAmbient) {
   EXPECT_EQ(warnings_of(R"("lights": [], "objects": [{"type": "sphere", "radius": 1}])"),
-            std::vector<std::string>{
-                "t.json: lights: the scene has no lights and no ambient, so its objects render black"});
+            std::vector<std::string>{"t.json: lights: the scene has no lights and no ambient, so objects other than "
+                                     "mirrors and glass render black"});
   // Ambient light alone lights it; a scene with no objects has nothing to light.
   EXPECT_EQ(warnings_of(R"("lights": [], "ambient": [0.1, 0.1, 0.1], "objects": [{"type": "sphere", "radius": 1}])"),
             std::vector<std::string>{});
   EXPECT_EQ(warnings_of(R"("lights": [])"), std::vector<std::string>{});
+  // A mirror and a glass ball show their surroundings (a sky box) without light.
+  EXPECT_EQ(warnings_of(R"("lights": [], "materials": {"mirror": {"reflect": 1}, "glass": {"ior": 1.5}},
+                           "objects": [{"type": "sphere", "radius": 1, "material": "mirror"},
+                                       {"type": "sphere", "radius": 1, "material": "glass"}])"),
+            std::vector<std::string>{});
 }
 
 TEST(SceneWarnings, ColoursThatLookLike0To255) {
