@@ -171,7 +171,8 @@ Viewer::Viewer(const ViewArgs& args, Registry& registry, const Scene& scene)
                                       viewer::scene_bounds(scene))),
       refinement_(settings_.image.spp),
       bounds_(viewer::scene_bounds(scene)),
-      window_(settings_.image.width, settings_.image.height, "prism view: " + fs::path(args.scene).filename().string()) {
+      window_(settings_.image.width, settings_.image.height,
+              "prism view: " + fs::path(args.scene).filename().string()) {
   {
     viewer::ContextRelease release(window_);
     choice_ = open_backend(registry, args.backend);

@@ -375,7 +375,8 @@ void ObjectReader::finish() const {
     std::vector<std::string> absent;
     for (const auto& k : known_)
       if (!value_.contains(k)) absent.push_back(k);
-    if (auto meant = likely_meant(it.key(), absent)) fail(path_of(it.key()), "unknown key (did you mean " + quote(*meant) + "?)");
+    if (auto meant = likely_meant(it.key(), absent))
+      fail(path_of(it.key()), "unknown key (did you mean " + quote(*meant) + "?)");
     std::string list;
     for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
     fail(path_of(it.key()), "unknown key (expected one of: " + list + ")");

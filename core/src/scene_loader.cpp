@@ -292,7 +292,8 @@ Scene load_scene_from_string(const std::string& text, const std::filesystem::pat
     throw InputError(source_name + ": " + e.what());
   }
   scene.source = source_name;
-  for (const std::string& warning : loader::scene_warnings(scene)) scene.warnings.push_back(source_name + ": " + warning);
+  for (const std::string& warning : loader::scene_warnings(scene))
+    scene.warnings.push_back(source_name + ": " + warning);
   return scene;
 }
 

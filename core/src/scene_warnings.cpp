@@ -36,9 +36,10 @@ void check_colour(const glm::dvec3& colour, const std::string& path, std::vector
 void check_colours(const Scene& scene, std::vector<std::string>& warnings) {
   check_colour(scene.ambient, "ambient", warnings);
   if (!scene.background.has_cubemap()) check_colour(scene.background.color, "background.color", warnings);
-  for (size_t i = 1; i < scene.materials.size(); ++i)  // 0: the default material, not in the file
-    check_colour(scene.materials[i].color, json::child_path(json::child_path("materials", scene.materials[i].name), "color"),
-                 warnings);
+  for (size_t i = 1; i < scene.materials.size(); ++i) {  // 0: the default material, not in the file
+    const std::string path = json::child_path(json::child_path("materials", scene.materials[i].name), "color");
+    check_colour(scene.materials[i].color, path, warnings);
+  }
   for (size_t i = 0; i < scene.lights.size(); ++i)
     check_colour(scene.lights[i].color, json::child_path(json::index_path("lights", i), "color"), warnings);
 }

@@ -112,7 +112,8 @@ Rgb heat_colour(double difference, double threshold) {
   if (difference <= 0) return {0, 0, 0};
   const double scale = threshold > 0 ? difference / threshold : std::numeric_limits<double>::infinity();
   if (scale < 1) {
-    const double below = std::max(0.0, std::log(scale / kFloorScale) / std::log(1 / kFloorScale));  // 0 at floor, 1 at 1x
+    // 0 at the floor, 1 at the threshold.
+    const double below = std::max(0.0, std::log(scale / kFloorScale) / std::log(1 / kFloorScale));
     return {below * kBelowThreshold.r, below * kBelowThreshold.g, below * kBelowThreshold.b};
   }
   const double above = std::min(std::log(scale) / std::log(kWhiteScale), 1.0);  // 0 at 1x, 1 at 8x
@@ -574,11 +575,12 @@ std::string scene_counts_text(const BackendSummary& s) {
 
 std::string backend_summary_row(const BackendSummary& s) {
   const bool measured = s.compared > 0;
-  return "<tr><td>" + html(s.backend) + "</td><td class=\"text\">" + status_badge(s.passes() ? "pass" : s.compared ? "fail" : "skipped") +
-         " " + html(scene_counts_text(s)) + "</td><td>" + speedup_text(s.speedup) + "</td><td>" +
-         (measured ? error_text(s.worst_max_error) : "—") + "</td><td>" + (measured ? error_text(s.worst_rms_error) : "—") +
-         "</td><td>" + (measured ? ms_text(s.compile_ms) : "—") + "</td><td>" + (measured ? ms_text(s.first_frame_ms) : "—") +
-         "</td></tr>\n";
+  const std::string status = s.passes() ? "pass" : measured ? "fail" : "skipped";
+  auto cell = [&](const std::string& text) { return "<td>" + (measured ? text : "—") + "</td>"; };
+  return "<tr><td>" + html(s.backend) + "</td><td class=\"text\">" + status_badge(status) + " " +
+         html(scene_counts_text(s)) + "</td><td>" + speedup_text(s.speedup) + "</td>" +
+         cell(error_text(s.worst_max_error)) + cell(error_text(s.worst_rms_error)) + cell(ms_text(s.compile_ms)) +
+         cell(ms_text(s.first_frame_ms)) + "</tr>\n";
 }
 
 // Per backend over every scene, and the fastest one that passed them all.
@@ -882,7 +884,8 @@ bool has_failure(const SceneResult& scene) {
 std::string scene_section(const SceneResult& scene, size_t index, const Caps& caps, const Palette& palette) {
   const bool failed = has_failure(scene);
   return "<section id=\"" + scene_anchor(index) + "\"><details" + (failed ? " open" : "") + "><summary><h2>" +
-         html(scene_title(scene)) + "</h2> " + status_badge(failed ? "fail" : "pass") + "</summary>\n<p class=\"meta\">" +
+         html(scene_title(scene)) + "</h2> " + status_badge(failed ? "fail" : "pass") +
+         "</summary>\n<p class=\"meta\">" +
          html(settings_text(scene.image)) + (scene.file.empty() ? "" : " · " + html(scene.file.string())) + "</p>\n" +
          gallery(scene, caps.threshold) + metrics_table(scene, caps) + attribution_list(scene) + reason_list(scene) +
          error_time_chart(scene, palette) + "</details></section>\n";
