@@ -279,7 +279,8 @@ std::string line_starting(const std::string& text, const std::string& prefix) {
 // Left alone, the viewer renders the view at 1, 2 and 4 spp (the scene's),
 // which is `prism render`'s image, and then nothing more: keys that change
 // nothing (P, C, H) and a second of waiting add no frame. C
-// prints a camera member the loader reads as the scene's own camera.
+// prints a camera member the loader reads as the scene's own camera; H
+// draws the list of keys without rendering again.
 TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
   if (!prism::test::require_backend_or_skip("reference")) return;
   if (!start_x("reference")) return;
@@ -288,7 +289,9 @@ TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
   ASSERT_TRUE(ExitedWith(prism({"render", file.string(), "-b", "reference", "-o", out.string()}, std::nullopt), 0));
   const Pixels rendered = read_png(out);
 
-  Child child({prism_binary().string(), "view", file.string(), "-b", "reference"}, RunOptions{work_, x_->display(), root_});
+  const fs::path capture = root_ / "capture.png";
+  Child child({prism_binary().string(), "view", file.string(), "-b", "reference", "--capture", capture.string()},
+              RunOptions{work_, x_->display(), root_});
   ASSERT_TRUE(child.started());
   XClient x(x_->display());
   ASSERT_TRUE(x.ok());
@@ -310,6 +313,11 @@ TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
   const RunResult r = child.wait(60);
   ASSERT_TRUE(ExitedWith(r, 0));
   EXPECT_NE(r.out.find("prism view: 3 frames at 160x90 with reference"), std::string::npos) << r;
+  // H drew the list of keys over the image, below the status line too: ten
+  // lines of text are taller than the 90-pixel window.
+  const Pixels shown_last = read_png(capture);
+  ASSERT_EQ(shown_last.height, kHeight);
+  EXPECT_GT(differing_pixels(shown_last, rendered, kBandRows, kHeight), kWidth * (kHeight - kBandRows) / 2);
 
   const std::string camera = line_starting(r.out, R"("camera": {)");
   ASSERT_FALSE(camera.empty()) << r;
