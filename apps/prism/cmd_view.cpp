@@ -63,8 +63,9 @@ std::string read_text(const fs::path& file) {
 }
 
 // P: the frame as rendered (no status band), to the first free prism-view-<n>.png.
-// Served after the next frame is shown, so camera moves made before the key
-// press are in it, and a press before the first frame is not lost.
+// Served once the frame on screen has reached the scene's spp, so camera
+// moves made before the key press are in it, the image is the refined one,
+// and a press before the first frame is not lost.
 void save_screenshot(const Image& frame) {
   fs::path file;
   for (int n = 1;; ++n) {
