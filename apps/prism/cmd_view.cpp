@@ -340,7 +340,7 @@ Command add_view_command(CLI::App& app) {
   sub->add_option("--width", args->width, "Initial window width in pixels (1..16384; default the scene's image width)");
   sub->add_option("--height", args->height,
                   "Initial window height in pixels (1..16384; default the scene's image height)");
-  sub->add_option("--spp", args->spp, "Samples per pixel (1..4096)");
+  sub->add_option("--spp", args->spp, "Samples per pixel the still view is refined to (1..4096)");
   sub->add_option("--max-depth", args->max_depth, "Surface interactions per camera sample (1..64)");
   sub->add_option("--scale", args->scale,
                   "Render at this fraction of the window's size, shown enlarged (0 < S <= 1; default 1)");
