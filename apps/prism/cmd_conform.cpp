@@ -1,4 +1,4 @@
-// prism conform [SCENES...] [-b BACKENDS] [--report DIR] [--sweep] [--stability DIR]
+// prism conform [SCENES...] [-b BACKENDS] [--report DIR] [--size WxH] [--sweep] [--stability DIR]
 // Every backend's image of every scene against the reference backend's at
 // the same settings; exit 1 when any backend fails, 0 otherwise.
 #include <cstdio>
@@ -19,6 +19,7 @@ struct ConformArgs {
   std::vector<std::string> scenes;
   std::vector<std::string> backends;
   std::string report, references = "tests/conformance/references", stability;
+  std::string size;
   bool sweep = false;
   int sweep_max_spp = 16;
 };
@@ -41,6 +42,7 @@ int run_conform(const ConformArgs& args) {
   options.sweep = args.sweep;
   options.sweep_max_spp = args.sweep_max_spp;
   options.references = args.references;
+  if (!args.size.empty()) options.size = conform::parse_size(args.size);
   if (!args.report.empty()) fs::create_directories(args.report);
   std::optional<conform::StabilityResults> stability;
   if (!args.stability.empty()) stability = conform::read_stability_results(args.stability);
@@ -54,6 +56,7 @@ int run_conform(const ConformArgs& args) {
     conform::write_report(run, args.report);
     std::printf("report: %s\n", (fs::path(args.report) / "index.html").string().c_str());
   }
+  std::printf("%s\n", conform::fastest_line(conform::summarize(run)).c_str());
   std::printf("%s: %zu scene(s) in %.1f s\n", run.passed() ? "PASSED" : "FAILED", run.scenes.size(), run.wall_ms / 1000.0);
   return run.passed() ? 0 : 1;
 }
@@ -68,6 +71,7 @@ Command add_conform_command(CLI::App& app) {
   sub->add_option("-b,--backend", args->backends, "Backends to test, comma-separated (default: every one found)")
       ->delimiter(',');
   sub->add_option("--report", args->report, "Write index.html, results.json and results.csv to this folder");
+  sub->add_option("--size", args->size, "Render every scene at WIDTHxHEIGHT (e.g. 320x180) instead of its own size");
   sub->add_flag("--sweep", args->sweep, "Also measure error against time over spp 1, 2, 4, ...");
   sub->add_option("--sweep-max-spp", args->sweep_max_spp, "Largest spp of the sweep (default 16)")
       ->check(CLI::Range(1, 4096));

@@ -1,6 +1,7 @@
 // prism render SCENE -b BACKEND -o OUT.(png|exr) [overrides] [--aov id,path] [--stats F.json]
 //   [--frames N [--orbit DEG] | --cameras FILE] [--mpi [--tile N]]
 #include <cstdio>
+#include <iostream>
 #include <optional>
 
 #include "cli_common.hpp"
@@ -50,6 +51,7 @@ int run_render(const RenderArgs& args) {
   std::map<std::string, double> ms;
   Registry registry;
   Scene scene = load_scene(args.scene, registry);
+  write_warnings(scene, std::cerr);
   RenderSettings settings = settings_for(scene, args);
   const FramePlan plan = plan_frames(scene, args.output, args.frames, args.orbit, args.cameras);
   ms["load"] = timer.lap();
@@ -111,7 +113,7 @@ int run_mpi_render(const RenderArgs& args) {
 Command add_render_command(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* sub = app.add_subcommand("render", "Render a scene to an image (.png sRGB 8-bit, .exr linear float)");
-  sub->add_option("scene", args->scene, "Scene file (JSON)")->required();
+  sub->add_option("scene", args->scene, "Scene file (JSON; - reads standard input)")->required();
   sub->add_option("-b,--backend", args->backend, "Backend name, or auto for the fastest usable one");
   sub->add_option("-o,--output", args->output, "Output image, .png or .exr")->required();
   sub->add_option("--width", args->width, "Image width in pixels (1..16384)");

@@ -1,5 +1,6 @@
 #include "json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -250,28 +251,65 @@ bool ObjectReader::has(const std::string& key) const { return value_.contains(ke
 
 namespace {
 
-// Levenshtein distance, to tell a misspelt key from a missing one.
+// Edits from a to b: insertions, deletions, substitutions and swaps of two
+// neighbours ("raduis" is one swap from "radius"), to tell a misspelt key
+// from a missing one. Three rows of the table: row i-2, i-1 and i.
 size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<size_t> row(b.size() + 1);
-  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  std::vector<size_t> before(b.size() + 1), above(b.size() + 1), row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) above[j] = j;
   for (size_t i = 1; i <= a.size(); ++i) {
-    size_t diagonal = row[0];
     row[0] = i;
     for (size_t j = 1; j <= b.size(); ++j) {
-      size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
+      row[j] = std::min({above[j] + 1, row[j - 1] + 1, above[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) row[j] = std::min(row[j], before[j - 2] + 1);
     }
+    std::swap(before, above);
+    std::swap(above, row);
   }
-  return row[b.size()];
+  return above[b.size()];
 }
 
+// Names longer than this are not guessed at (the distance is quadratic in the length).
+constexpr size_t kMaxGuessedLength = 64;
+
+// At most this many names are listed after an unknown one.
+constexpr size_t kMaxListedNames = 10;
+
 }  // namespace
+
+std::optional<std::string> likely_meant(const std::string& given, const std::vector<std::string>& candidates) {
+  std::optional<std::string> best;
+  size_t best_distance = 3;  // two edits at most
+  if (given.size() > kMaxGuessedLength) return best;
+  for (const auto& candidate : candidates) {
+    // Names of very different lengths are far apart: skip the quadratic distance (a key may be megabytes long).
+    const size_t longer = std::max(given.size(), candidate.size());
+    if (longer - std::min(given.size(), candidate.size()) >= best_distance || longer > kMaxGuessedLength) continue;
+    const size_t d = edit_distance(given, candidate);
+    // Fewer edits than half the longer name: "x" is no typo of "up".
+    if (d < best_distance && 2 * d < longer) {
+      best = candidate;
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+std::string unknown_name(const std::string& kind, const std::string& kinds, const std::string& name,
+                         const std::vector<std::string>& defined) {
+  const std::string head = "unknown " + kind + " " + quote(name);
+  if (defined.empty()) return head + " (no " + kinds + " are defined)";
+  if (auto meant = likely_meant(name, defined)) return head + " (did you mean " + quote(*meant) + "?)";
+  std::string list;
+  for (size_t i = 0; i < defined.size() && i < kMaxListedNames; ++i) list += (i ? ", " : "") + quote(defined[i]);
+  if (defined.size() > kMaxListedNames) list += ", ... (" + std::to_string(defined.size()) + " in all)";
+  return head + " (" + kinds + ": " + list + ")";
+}
 
 void ObjectReader::fail_missing(const std::string& key) const {
   // A required key missing beside an unknown key that looks like it is a typo: name the typo.
   for (auto it = value_.begin(); it != value_.end(); ++it) {
-    if (std::find(known_.begin(), known_.end(), it.key()) == known_.end() && edit_distance(it.key(), key) <= 2)
+    if (std::find(known_.begin(), known_.end(), it.key()) == known_.end() && likely_meant(it.key(), {key}))
       fail(path_of(it.key()), "unknown key (did you mean " + quote(key) + "?)");
   }
   fail(path_of(key), "required key is missing");
@@ -333,6 +371,12 @@ std::optional<std::string> ObjectReader::string(const std::string& key) {
 void ObjectReader::finish() const {
   for (auto it = value_.begin(); it != value_.end(); ++it) {
     if (std::find(known_.begin(), known_.end(), it.key()) != known_.end()) continue;
+    // A key already present is no typo of this one: suggest only those absent.
+    std::vector<std::string> absent;
+    for (const auto& k : known_)
+      if (!value_.contains(k)) absent.push_back(k);
+    if (auto meant = likely_meant(it.key(), absent))
+      fail(path_of(it.key()), "unknown key (did you mean " + quote(*meant) + "?)");
     std::string list;
     for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
     fail(path_of(it.key()), "unknown key (expected one of: " + list + ")");

@@ -52,6 +52,16 @@ std::vector<double> read_numbers(const Json& value, const std::string& path, siz
 glm::dvec3 read_vec3(const Json& value, const std::string& path, Range range = kAny);
 void require_nonzero(const glm::dvec3& v, const std::string& path);
 
+// The candidate a misspelt `given` most likely stands for: the nearest
+// within two edits (a swap of neighbours is one) and fewer than half the
+// letters of the longer name; names over 64 bytes are never guessed.
+std::optional<std::string> likely_meant(const std::string& given, const std::vector<std::string>& candidates);
+// The message for a name that is not defined: "unknown material 'rde'" and
+// then "(did you mean 'red'?)", "(materials: 'm', 'red')" or "(no materials
+// are defined)". `kind` is singular ("material"), `kinds` plural.
+std::string unknown_name(const std::string& kind, const std::string& kinds, const std::string& name,
+                         const std::vector<std::string>& defined);
+
 class ObjectReader {
  public:
   ObjectReader(const Json& value, std::string path);
@@ -73,7 +83,8 @@ class ObjectReader {
   glm::dvec2 vec2(const std::string& key, glm::dvec2 fallback, Range range = kAny);
   std::optional<std::string> string(const std::string& key);
 
-  // Fails on any key that no call above asked for, listing those that were.
+  // Fails on any key that no call above asked for: names the key it is a
+  // typo of, or else lists those asked for.
   void finish() const;
 
  private:

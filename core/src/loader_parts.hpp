@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "json_reader.hpp"
 #include "prism/registry.hpp"
@@ -31,6 +32,8 @@ Texture read_texture(const json::Json& value, const std::string& name, const std
                      const std::filesystem::path& base_dir, size_t pixels_left);
 // What the scene's textures leave of limits::kMaxTexturePixels.
 size_t texture_pixels_left(const Scene& scene);
+// The names of a name-to-index map, in its (alphabetical) order, for messages.
+std::vector<std::string> names_of(const std::map<std::string, int>& by_name);
 int texture_index(const std::map<std::string, int>& textures, const std::string& name, const std::string& path);
 Material read_material(const json::Json& value, const std::string& path, const std::map<std::string, int>& textures);
 Light read_light(const json::Json& value, const std::string& path);
@@ -43,5 +46,10 @@ glm::dvec3 read_shadow_ambient(json::ObjectReader& r);
 // One entry of `objects`: its plugin's fields, frame and material.
 Object read_object(const json::Json& value, const std::string& path, Registry& registry,
                    const std::map<std::string, int>& materials, Scene& scene);
+
+// What looks wrong in a scene that loaded ("materials.red.color: [255, 0, 0]
+// looks like 0-255 values; ..."), each with its JSON path: lighting first,
+// then colours, then objects out of view.
+std::vector<std::string> scene_warnings(const Scene& scene);
 
 }  // namespace prism::loader

@@ -128,7 +128,8 @@ Object read_object(const Json& value, const std::string& path, Registry& registr
   object.desc = &desc;
   if (auto name = r.string("material")) {
     auto it = materials.find(*name);
-    if (it == materials.end()) json::fail(r.path_of("material"), "unknown material " + quote(*name));
+    if (it == materials.end())
+      json::fail(r.path_of("material"), json::unknown_name("material", "materials", *name, names_of(materials)));
     object.material = it->second;
   }
   if (desc.flags & PRISM_PRIMITIVE_TRANSFORMABLE) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <fstream>
+#include <iostream>
 #include <system_error>
 #include <vector>
 
@@ -93,9 +94,15 @@ size_t texture_pixels_left(const Scene& scene) {
   return used >= limits::kMaxTexturePixels ? 0 : limits::kMaxTexturePixels - used;
 }
 
+std::vector<std::string> names_of(const std::map<std::string, int>& by_name) {
+  std::vector<std::string> names;
+  for (const auto& entry : by_name) names.push_back(entry.first);
+  return names;
+}
+
 int texture_index(const std::map<std::string, int>& textures, const std::string& name, const std::string& path) {
   auto it = textures.find(name);
-  if (it == textures.end()) json::fail(path, "unknown texture " + quote(name));
+  if (it == textures.end()) json::fail(path, json::unknown_name("texture", "textures", name, names_of(textures)));
   return it->second;
 }
 
@@ -285,10 +292,18 @@ Scene load_scene_from_string(const std::string& text, const std::filesystem::pat
     throw InputError(source_name + ": " + e.what());
   }
   scene.source = source_name;
+  for (const std::string& warning : loader::scene_warnings(scene))
+    scene.warnings.push_back(source_name + ": " + warning);
   return scene;
 }
 
 std::string read_scene_text(const std::filesystem::path& file) {
+  if (file == kStandardInput) {
+    const std::string text = read_at_most(std::cin, limits::kMaxSceneFileBytes + 1);
+    if (std::cin.bad()) throw InputError(std::string(kStandardInputName) + ": cannot read the scene");
+    check_scene_size(text.size(), kStandardInputName, true);
+    return text;
+  }
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(file, error);
   if (!error) check_scene_size(size, file.string(), false);  // before reading a byte
@@ -302,7 +317,14 @@ std::string read_scene_text(const std::filesystem::path& file) {
 }
 
 Scene load_scene(const std::filesystem::path& file, Registry& registry) {
+  // From standard input, texture paths are relative to the current directory (an empty base).
+  if (file == kStandardInput) return load_scene_from_string(read_scene_text(file), {}, registry, kStandardInputName);
   return load_scene_from_string(read_scene_text(file), file.parent_path(), registry, file.string());
+}
+
+void write_warnings(const Scene& scene, std::ostream& out) {
+  for (const std::string& warning : scene.warnings) out << "prism: warning: " << warning << "\n";
+  out.flush();
 }
 
 std::vector<Camera> load_cameras_from_string(const std::string& text, const std::string& source_name) {

@@ -61,9 +61,9 @@ const ErrorCase kCases[] = {
      R"("objects": [{"type": "sphere", "raduis": 1}])",
      "t.json: objects[0].raduis: unknown key (did you mean 'radius'?)"},
     {"UnknownMaterial", [](LiveScene& s) { s.add_sphere({0, 0, 0}, 1, "gold"); },
-     "add_sphere().material: unknown material 'gold'",
+     "add_sphere().material: unknown material 'gold' (materials: 'm')",
      R"("objects": [{"type": "sphere", "material": "gold"}])",
-     "t.json: objects[0].material: unknown material 'gold'"},
+     "t.json: objects[0].material: unknown material 'gold' (materials: 'm')"},
     {"PluginValidation",
      [](LiveScene& s) {
        s.add_object("quadric", {{"coefficients", {1, 1, 1, 0, 0, 0, 0, 0, 0, -1}},
@@ -85,8 +85,9 @@ const ErrorCase kCases[] = {
      R"("materials": {"m": {"absorb": [0.1, 0, 0]}})",
      "t.json: materials.m.absorb: must be [0, 0, 0] on an opaque material (ior 0)"},
     {"UnknownTexture", [](LiveScene& s) { s.set_material("m", {.texture = "wood"}); },
-     "set_material(\"m\").texture: unknown texture 'wood'",
-     R"("materials": {"m": {"texture": "wood"}})", "t.json: materials.m.texture: unknown texture 'wood'"},
+     "set_material(\"m\").texture: unknown texture 'wood' (no textures are defined)",
+     R"("materials": {"m": {"texture": "wood"}})",
+     "t.json: materials.m.texture: unknown texture 'wood' (no textures are defined)"},
     {"NegativeIntensity", [](LiveScene& s) { s.add_light(PointLight{.intensity = -1}); },
      "add_light().intensity: must be >= 0, got -1",
      R"("lights": [{"type": "point", "position": [0, 0, 0], "intensity": -1}])",
@@ -106,9 +107,9 @@ const ErrorCase kCases[] = {
      "set_ambient().ambient[0]: must be >= 0, got -1",
      R"("ambient": [-1, 0, 0])", "t.json: ambient[0]: must be >= 0, got -1"},
     {"CubemapOfUnknownTextures", [](LiveScene& s) { s.set_background_cubemap({"a", "b", "c", "d", "e", "f"}); },
-     "set_background_cubemap().cubemap[0]: unknown texture 'a'",
+     "set_background_cubemap().cubemap[0]: unknown texture 'a' (no textures are defined)",
      R"("background": {"cubemap": ["a", "b", "c", "d", "e", "f"]})",
-     "t.json: background.cubemap[0]: unknown texture 'a'"},
+     "t.json: background.cubemap[0]: unknown texture 'a' (no textures are defined)"},
 };
 
 class ApiErrors : public testing::TestWithParam<ErrorCase> {};

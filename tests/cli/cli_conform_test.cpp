@@ -88,6 +88,27 @@ TEST_F(ConformWithoutVulkan, ARequiredBackendThatCannotRunFails) {
   EXPECT_NE(r.out.find("PRISM_REQUIRE_BACKENDS"), std::string::npos) << r;
 }
 
+// The unperturbed backend passes at 40x30 as well; the console names it as
+// the one to use, and the results hold the size asked for.
+TEST_F(Conform, SizeRendersEverySceneAtThatSize) {
+  ::setenv("PRISM_PERTURB_PIXELS", "0", 1);
+  RunResult r = run({"conform", torus_scene(), "-b", "perturbed", "--size", "40x30", "--report", path("report").string()},
+                    PRISM_CLI_CONFORM_PLUGIN_DIR);
+  ASSERT_TRUE(ExitedWith(r, 0));
+  EXPECT_NE(r.out.find("\nfastest backend that passes here: perturbed\n"), std::string::npos) << r;
+  const json results = json::parse(read_file(path("report") / "results.json"));
+  EXPECT_EQ(results["scenes"][0]["settings"]["width"], 40);
+  EXPECT_EQ(results["scenes"][0]["settings"]["height"], 30);
+  EXPECT_EQ(results["scenes"][0]["backends"][0]["metrics"]["pixels"], 1200);
+}
+
+TEST_F(Conform, ABadSizeIsBadInput) {
+  RunResult r = run({"conform", sphere_scene(), "--size", "40by30"});
+  EXPECT_TRUE(ExitedWith(r, 2));
+  EXPECT_EQ(r.err, "prism: error: --size: expected WIDTHxHEIGHT with each side in [1, 16384] (e.g. 320x180), "
+                   "got '40by30'\n");
+}
+
 TEST_F(Conform, AnUnknownBackendIsBadInput) {
   RunResult r = run({"conform", sphere_scene(), "-b", "nonesuch"});
   EXPECT_TRUE(ExitedWith(r, 2));

@@ -17,6 +17,7 @@
 
 #include "conform/conform.hpp"
 #include "prism/image_file.hpp"
+#include "prism/errors.hpp"
 #include "prism/image_io.hpp"
 #include "test_support.hpp"
 
@@ -165,7 +166,7 @@ struct HeatMapCase {
                          -8 * kThreshold, 0, 0,      // 8x the threshold: white
                          0.3f, kNaN, 0.3f,           // NaN: magenta
                          kInf, 0, 0,                 // Inf: magenta
-                         0, 0, kThreshold * 0.6f});  // 0.6x the threshold: sRGB 0.6 red
+                         0, 0, kThreshold * 0.6f});  // 0.6x the threshold: blue, see LiteralColours
 };
 
 TEST(ConformHeatMap, LiteralColours) {
@@ -179,7 +180,10 @@ TEST(ConformHeatMap, LiteralColours) {
   expect_pixel(map, 2, 1, 1, 1);
   expect_pixel(map, 3, 1, 0, 1);
   expect_pixel(map, 4, 1, 0, 1);
-  expect_pixel(map, 5, 0.318546778f, 0, 0);  // the linear value of sRGB 0.6
+  // 0.6x the threshold sits log10(0.6 / 0.001) / 3 = 0.92605 of the way from
+  // the floor (1/1000 of it) to the threshold: sRGB (0, 0.6, 1) x 0.92605 =
+  // (0, 0.55563, 0.92605), linear (0, 0.269192, 0.839950).
+  expect_pixel(map, 5, 0, 0.2691919f, 0.8399497f);
 }
 
 TEST(ConformHeatMap, PngShowsTheDesignedColours) {
@@ -191,7 +195,7 @@ TEST(ConformHeatMap, PngShowsTheDesignedColours) {
   ASSERT_GE(file.channels, 3);
   const auto byte = [&](int x, int channel) { return std::lround(file.pixels[x * file.channels + channel] * 255); };
   const std::vector<std::array<long, 3>> expected = {{0, 0, 0},     {255, 0, 0},   {255, 255, 255},
-                                                     {255, 0, 255}, {255, 0, 255}, {153, 0, 0}};
+                                                     {255, 0, 255}, {255, 0, 255}, {0, 142, 236}};
   for (int x = 0; x < 6; ++x)
     for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(byte(x, ch), expected[x][ch]) << "pixel " << x << " channel " << ch;
 }
@@ -206,6 +210,18 @@ TEST(ConformHeatMap, GrowsFromRedToWhiteAboveTheThreshold) {
   EXPECT_EQ(map.rgb[4], 1.0f);  // past yellow, towards white
   EXPECT_GT(map.rgb[5], 0.0f);
   expect_pixel(map, 2, 1, 1, 1);  // clamped at white
+}
+
+// Errors far below the threshold still show: 1/500 of it is log10(2) / 3 =
+// 0.10034 of the way up from black, sRGB (0, 0.0602, 0.10034), linear
+// (0, 0.0049174, 0.0100762); 1/1000 of it and less are black.
+TEST(ConformHeatMap, SmallErrorsShowOnALogScale) {
+  const Image reference = one_row({0, 0, 0, 0, 0, 0, 0, 0, 0});
+  const Image image = one_row({kThreshold / 500, 0, 0, kThreshold / 1000, 0, 0, kThreshold / 5000, 0, 0});
+  const Image map = heat_map(reference, image, kThreshold);
+  expect_pixel(map, 0, 0, 0.0049174f, 0.0100762f);
+  expect_pixel(map, 1, 0, 0, 0);
+  expect_pixel(map, 2, 0, 0, 0);
 }
 
 TEST(ConformHeatMap, RefusesImagesOfDifferentSizes) {
@@ -333,6 +349,109 @@ TEST_F(ConformReport, ChartsHaveOnlyFiniteCoordinates) {
   }
 }
 
+// good: 12.5 ms against the reference's 250.5 in both scenes, 20.04x;
+// bad: 3.25 ms, 77.08x, but it fails; vulkan: skipped everywhere.
+TEST(ConformSummary, PerBackendOverTheRun) {
+  const std::vector<BackendSummary> s = summarize(synthetic_run());
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_EQ(s[0].backend, "good");
+  EXPECT_EQ(s[0].passed, 2);
+  EXPECT_EQ(s[0].compared, 2);
+  EXPECT_NEAR(s[0].speedup, 20.04, 1e-9);
+  EXPECT_EQ(s[0].worst_max_error, 0.0);
+  EXPECT_EQ(s[0].first_frame_ms, 12.5);
+  EXPECT_TRUE(s[0].passes());
+  EXPECT_EQ(s[1].backend, "bad");
+  EXPECT_EQ(s[1].failed, 2);
+  EXPECT_NEAR(s[1].speedup, 250.5 / 3.25, 1e-9);
+  EXPECT_EQ(s[1].worst_max_error, 0.5);
+  EXPECT_EQ(s[1].worst_rms_error, 0.0456);
+  EXPECT_EQ(s[1].compile_ms, 281.5);     // 140.75 in each scene
+  EXPECT_EQ(s[1].first_frame_ms, 144.0);  // 140.75 + 3.25
+  EXPECT_FALSE(s[1].passes());
+  EXPECT_EQ(s[2].backend, "vulkan");
+  EXPECT_EQ(s[2].skipped, 2);
+  EXPECT_EQ(s[2].speedup, 0.0);
+  EXPECT_FALSE(s[2].passes());
+  EXPECT_EQ(fastest_passing(s), "good");
+  EXPECT_EQ(fastest_line(s), "fastest backend that passes here: good");
+}
+
+TEST(ConformSummary, InResultsJson) {
+  const fs::path dir = prism::test::fresh_temp_dir();
+  write_results_json(synthetic_run(), dir / "results.json");
+  const nlohmann::json json = nlohmann::json::parse(read_text(dir / "results.json"));
+  EXPECT_EQ(json["fastest_passing"], "good");
+  ASSERT_EQ(json["backends"].size(), 3u);
+  EXPECT_EQ(json["backends"][1]["backend"], "bad");
+  EXPECT_EQ(json["backends"][1]["failed"], 2);
+  EXPECT_EQ(json["backends"][1]["first_frame_ms"], 144.0);
+  EXPECT_EQ(json["backends"][1]["passes"], false);
+  EXPECT_EQ(json["scenes"][0]["backends"][1]["first_frame_ms"], 144.0);
+}
+
+TEST(ConformSummary, NoPassingBackend) {
+  RunResult run = synthetic_run();
+  for (SceneResult& scene : run.scenes) scene.backends = {bad_backend(), skipped_backend()};
+  EXPECT_EQ(fastest_line(summarize(run)), "fastest backend that passes here: none");
+}
+
+TEST(ConformSummary, TheFasterOfTwoPassingBackends) {
+  RunResult run = synthetic_run();
+  BackendResult quick = good_backend();
+  quick.backend = "quick";
+  quick.render_ms = 2.5;
+  for (SceneResult& scene : run.scenes) scene.backends.push_back(quick);
+  EXPECT_EQ(fastest_passing(summarize(run)), "quick");
+}
+
+TEST_F(ConformReport, SummaryAtTheTop) {
+  const size_t summary = html_.find("<p class=\"fastest\" id=\"fastest\">fastest backend that passes here: good</p>");
+  ASSERT_NE(summary, std::string::npos);
+  EXPECT_LT(summary, html_.find("<section id=\"scene-0\">"));
+  EXPECT_NE(html_.find("<td>good</td>"), std::string::npos);
+  EXPECT_NE(html_.find("<td>20×</td>"), std::string::npos) << "good's speed against the reference";
+  EXPECT_NE(html_.find("<td>77×</td>"), std::string::npos) << "bad's speed against the reference";
+  EXPECT_NE(html_.find("2 pass"), std::string::npos);
+  EXPECT_NE(html_.find("2 fail"), std::string::npos);
+  EXPECT_NE(html_.find("2 skipped"), std::string::npos);
+}
+
+TEST_F(ConformReport, HeatMapScaleIsPrinted) {
+  EXPECT_NE(html_.find("log scale"), std::string::npos);
+  EXPECT_NE(html_.find(">≤ 1.6e-05</span>"), std::string::npos);
+  EXPECT_NE(html_.find(">0.00016</span>"), std::string::npos);
+  EXPECT_NE(html_.find(">0.0016</span>"), std::string::npos);
+  EXPECT_NE(html_.find(">0.016<br>threshold</span>"), std::string::npos);
+  EXPECT_NE(html_.find(">≥ 0.128</span>"), std::string::npos);
+}
+
+// Both scenes of the synthetic run have a failing backend: open. A scene
+// where everything passed starts collapsed.
+TEST(ConformReportSections, PassingScenesAreCollapsedFailingOnesOpen) {
+  RunResult run = synthetic_run();
+  run.scenes[1].backends = {good_backend(), skipped_backend()};
+  const fs::path dir = prism::test::fresh_temp_dir() / "report";
+  write_report(run, dir);
+  const std::string html = read_text(dir / "index.html");
+  EXPECT_NE(html.find("<section id=\"scene-0\"><details open><summary>"), std::string::npos);
+  EXPECT_NE(html.find("<section id=\"scene-1\"><details><summary>"), std::string::npos);
+}
+
+TEST(ConformSize, ParsesWidthByHeight) {
+  EXPECT_EQ(parse_size("320x180"), (std::pair<int, int>{320, 180}));
+  EXPECT_EQ(parse_size("1x16384"), (std::pair<int, int>{1, 16384}));
+  for (const char* bad : {"320", "x180", "320x", "0x180", "320x0", "16385x1", "-3x4", "3x4x5", "99999999999x1", "a1x2"}) {
+    try {
+      parse_size(bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()), std::string("--size: expected WIDTHxHEIGHT with each side in [1, 16384] "
+                                                   "(e.g. 320x180), got '") + bad + "'");
+    }
+  }
+}
+
 TEST(ConformReportDegenerate, SceneWithoutAnyImage) {
   RunResult run;
   SceneResult empty;
@@ -406,6 +525,11 @@ TEST_F(ConformReportInBrowser, LoadsEveryImageAndChart) {
   const std::string charts = body_attribute(dom, "data-charts");
   ASSERT_TRUE(std::regex_match(charts, std::regex("[0-9]+"))) << charts;
   EXPECT_GE(std::stoi(charts), 1);
+}
+
+TEST_F(ConformReportInBrowser, ShowsTheFastestPassingBackend) {
+  const std::string dom = run_chromium("--dump-dom");
+  EXPECT_EQ(body_attribute(dom, "data-fastest"), "fastest backend that passes here: good");
 }
 
 TEST_F(ConformReportInBrowser, ScreenshotIsNotBlank) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "prism/scene_loader.hpp"
 #include "viewer/camera_controller.hpp"
 
 namespace prism::viewer {
@@ -284,6 +285,45 @@ TEST(SceneBounds, UnionOfTheBoundedObjects) {
   EXPECT_VEC3_EQ(box->hi, glm::dvec3(4, 1, 1));
   Scene empty;
   EXPECT_FALSE(scene_bounds(empty).has_value());
+}
+
+// A box from (0,0,0) to (3,4,12) has the diagonal sqrt(9 + 16 + 144) = 13:
+// a quarter of it, 3.25 units, per second.
+TEST(FlySpeed, AQuarterOfTheScenesDiagonalPerSecond) {
+  EXPECT_DOUBLE_EQ(fly_speed(Box3{{0, 0, 0}, {3, 4, 12}}, 7.0), 3.25);
+  // The same scene in millimetres flies 1000 times as fast.
+  EXPECT_DOUBLE_EQ(fly_speed(Box3{{0, 0, 0}, {3000, 4000, 12000}}, 7.0), 3250.0);
+}
+
+TEST(FlySpeed, TheTargetDistanceWithoutABoxOrWithAPoint) {
+  EXPECT_EQ(fly_speed(std::nullopt, 7.0), 7.0);
+  EXPECT_EQ(fly_speed(Box3{{1, 2, 3}, {1, 2, 3}}, 7.0), 7.0);
+}
+
+TEST(CameraJson, WritesTheCameraAsASceneMember) {
+  CameraController controller(front_camera(), OrbitStart{{0, 1, 0}, 5.0});
+  EXPECT_EQ(camera_json(controller),
+            R"("camera": {"position": [0, 0, 5], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_y": 40})");
+  controller.fly(0.5, -0.25, 1.0);  // camera (0.5, -0.25, 4), target (0.5, -0.25, -1)
+  EXPECT_EQ(camera_json(controller),
+            R"("camera": {"position": [0.5, -0.25, 4], "look_at": [0.5, -0.25, -1], "up": [0, 1, 0], "fov_y": 40})");
+}
+
+// What C prints, put in a scene file, loads as the camera on screen.
+TEST(CameraJson, TheLoaderReadsBackTheCameraOnScreen) {
+  CameraController controller(front_camera(), OrbitStart{{0, 1, 0}, 5.0});
+  controller.orbit(0.7, 0.4);
+  controller.dolly(0.37);
+  controller.fly(0.1, 0.2, 0.3);
+  Registry registry;
+  const Scene scene =
+      load_scene_from_string("{\"prism\": 1, " + camera_json(controller) + "}", ".", registry, "c.json");
+  const Camera& want = controller.camera();
+  EXPECT_VEC3_NEAR(scene.camera.position, want.position.x, want.position.y, want.position.z);
+  EXPECT_VEC3_NEAR(scene.camera.forward, want.forward.x, want.forward.y, want.forward.z);
+  EXPECT_VEC3_NEAR(scene.camera.right, want.right.x, want.right.y, want.right.z);
+  EXPECT_VEC3_NEAR(scene.camera.up, want.up.x, want.up.y, want.up.z);
+  EXPECT_EQ(scene.camera.fov_y, 40.0);
 }
 
 }  // namespace

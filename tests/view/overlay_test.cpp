@@ -74,5 +74,32 @@ TEST(Overlay, TranslucentBandWithWhiteText) {
   EXPECT_EQ(overlay_image("a long line of text", 1, 30).width, 30);
 }
 
+TEST(WithRefinement, AddsTheSppShownAndTheTargetWhenItFits) {
+  EXPECT_EQ(with_refinement("25FPS 40MS embree 160x90", 4, 16, 100), "25FPS 40MS embree 160x90 4/16 SPP");
+  // 24 characters + " 4/16 SPP" (9) = 33: fits in 33, not in 32.
+  EXPECT_EQ(with_refinement("25FPS 40MS embree 160x90", 4, 16, 33), "25FPS 40MS embree 160x90 4/16 SPP");
+  EXPECT_EQ(with_refinement("25FPS 40MS embree 160x90", 4, 16, 32), "25FPS 40MS embree 160x90");
+  EXPECT_EQ(with_refinement("25FPS 40MS embree 160x90", 1, 1, 100), "25FPS 40MS embree 160x90");
+}
+
+TEST(OverlayImage, LinesUnderEachOther) {
+  // Two lines at scale 1: 2 * 7 rows of text + 2 between + 2 * 2 padding = 20.
+  const Rgba8Image two = overlay_image(std::vector<std::string>{"AB", "C"}, 1, 100);
+  EXPECT_EQ(two.height, 20);
+  EXPECT_EQ(overlay_height(2, 1), 20);
+  // As wide as the longer line: 2 glyphs = 2 * 6 - 1 = 11 pixels + 2 * 2 padding.
+  EXPECT_EQ(two.width, 15);
+  EXPECT_EQ(overlay_image("AB", 1, 100).height, overlay_height(1));
+}
+
+TEST(KeyHelp, EveryKeyIsListedInCharactersTheFontDraws) {
+  const std::vector<std::string>& lines = key_help_lines();
+  ASSERT_EQ(lines.size(), 9u);
+  EXPECT_EQ(lines[6], "C: PRINT THE CAMERA AS JSON");
+  EXPECT_EQ(lines[7], "H: HIDE THESE KEYS");
+  for (const std::string& line : lines)
+    for (char c : line) EXPECT_TRUE(has_glyph(c)) << "'" << c << "' in " << line;
+}
+
 }  // namespace
 }  // namespace prism::viewer

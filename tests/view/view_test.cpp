@@ -6,10 +6,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <memory>
+#include <sstream>
 #include <thread>
 
 #include "prism/image_file.hpp"
+#include "prism/scene_loader.hpp"
 #include "process.hpp"
 #include "test_support.hpp"
 #include "x_server.hpp"
@@ -246,6 +249,88 @@ TEST_P(ViewBackend, KeysAndMouseDriveTheViewer) {
 }
 
 PRISM_INSTANTIATE_BACKEND_TESTS(ViewBackend);
+
+// sphere.json at 4 spp, its texture found from anywhere.
+fs::path write_four_spp_scene(const fs::path& folder) {
+  std::ifstream in(scene());
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string json = text.str();
+  auto replace = [&](const std::string& from, const std::string& to) {
+    const size_t at = json.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    if (at != std::string::npos) json.replace(at, from.size(), to);
+  };
+  replace(R"("height": 90 })", R"("height": 90, "spp": 4 })");
+  replace("../textures/planet.png", (prism::test::source_dir() / "scenes" / "textures" / "planet.png").string());
+  const fs::path file = folder / "four-spp.json";
+  std::ofstream(file) << json;
+  return file;
+}
+
+// The line of `text` that starts with `prefix`, or "".
+std::string line_starting(const std::string& text, const std::string& prefix) {
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind(prefix, 0) == 0) return line;
+  return "";
+}
+
+// Left alone, the viewer renders the view at 1, 2 and 4 spp (the scene's),
+// which is `prism render`'s image, and then nothing more: keys that change
+// nothing (P, C, H) and a second of waiting add no frame. C
+// prints a camera member the loader reads as the scene's own camera; H
+// draws the list of keys without rendering again.
+TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
+  if (!prism::test::require_backend_or_skip("reference")) return;
+  if (!start_x("reference")) return;
+  const fs::path file = write_four_spp_scene(root_);
+  const fs::path out = root_ / "render.png";
+  ASSERT_TRUE(ExitedWith(prism({"render", file.string(), "-b", "reference", "-o", out.string()}, std::nullopt), 0));
+  const Pixels rendered = read_png(out);
+
+  const fs::path capture = root_ / "capture.png";
+  Child child({prism_binary().string(), "view", file.string(), "-b", "reference", "--capture", capture.string()},
+              RunOptions{work_, x_->display(), root_});
+  ASSERT_TRUE(child.started());
+  XClient x(x_->display());
+  ASSERT_TRUE(x.ok());
+  const unsigned long window = x.find_window("prism view", 60);
+  ASSERT_NE(window, 0u) << "no viewer window appeared\n" << child.wait(1);
+  x.tap_key(window, "p");  // saved once the frame reaches 4 spp
+  ASSERT_TRUE(wait_for_file(work_ / "prism-view-1.png", 60)) << child.wait(1);
+  const Pixels shown = read_png(work_ / "prism-view-1.png");
+  std::string where;
+  EXPECT_EQ(differing_pixels(shown, rendered, 0, kHeight, &where), 0) << "first difference at " << where;
+
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  x.tap_key(window, "p");  // the frame is final: saved at once, nothing rendered
+  ASSERT_TRUE(wait_for_file(work_ / "prism-view-2.png", 60)) << child.wait(1);
+  x.tap_key(window, "c");
+  x.tap_key(window, "h");
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  x.tap_key(window, "Escape");
+  const RunResult r = child.wait(60);
+  ASSERT_TRUE(ExitedWith(r, 0));
+  EXPECT_NE(r.out.find("prism view: 3 frames at 160x90 with reference"), std::string::npos) << r;
+  // H drew the list of keys over the image, below the status line too: ten
+  // lines of text are taller than the 90-pixel window.
+  const Pixels shown_last = read_png(capture);
+  ASSERT_EQ(shown_last.height, kHeight);
+  EXPECT_GT(differing_pixels(shown_last, rendered, kBandRows, kHeight), kWidth * (kHeight - kBandRows) / 2);
+
+  const std::string camera = line_starting(r.out, R"("camera": {)");
+  ASSERT_FALSE(camera.empty()) << r;
+  Registry registry;
+  const Scene printed = load_scene_from_string("{\"prism\": 1, " + camera + "}", ".", registry, "printed");
+  const Scene original = load_scene(file, registry);
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(printed.camera.position[i], original.camera.position[i], 1e-12) << i;
+    EXPECT_NEAR(printed.camera.forward[i], original.camera.forward[i], 1e-12) << i;
+    EXPECT_NEAR(printed.camera.up[i], original.camera.up[i], 1e-12) << i;
+  }
+  EXPECT_EQ(printed.camera.fov_y, 35.0);
+}
 
 TEST_F(ViewCli, AutoPicksAUsableBackend) {
   if (!start_x("auto")) return;

@@ -13,6 +13,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "prism/backend.hpp"
@@ -56,6 +57,9 @@ struct BackendResult {
   std::string precision;
   double render_ms = 0;   // the render alone (the backend's compile time subtracted)
   double compile_ms = 0;  // kernel compile (GPU backends), 0 otherwise
+  double prepare_ms = 0;  // prepare(scene): acceleration structure, upload
+  // What a user waits for before the first image: prepare, compile, render.
+  double first_frame_ms() const { return prepare_ms + compile_ms + render_ms; }
   Metrics metrics;
   std::vector<Attribution> attribution;  // most pixels first
   std::vector<SweepPoint> sweep;         // with --sweep
@@ -100,9 +104,34 @@ struct Options {
   std::vector<std::string> required;          // PRISM_REQUIRE_BACKENDS: cannot-run is a failure
   bool sweep = false;
   int sweep_max_spp = 16;                     // the sweep renders spp 1, 2, 4, ... up to this
+  std::optional<std::pair<int, int>> size;    // --size: width and height in place of the scenes' own
   std::filesystem::path references;           // folder of the stored high-spp <scene>.exr images
   Caps caps;
 };
+
+// One backend over the whole run, for the top of the report.
+struct BackendSummary {
+  std::string backend;
+  int passed = 0, failed = 0, errors = 0, skipped = 0;  // scenes by status
+  int compared = 0;           // scenes it was measured on (passed + failed)
+  double speedup = 0;         // geometric mean over them of reference time / render time; 0: not measured
+  double worst_max_error = 0; // the largest per-pixel error in any of them
+  double worst_rms_error = 0;
+  double compile_ms = 0;      // summed over the scenes
+  double first_frame_ms = 0;  // mean over the scenes of prepare + compile + render
+  // Passed every scene it ran on, and ran on at least one.
+  bool passes() const { return passed > 0 && failed == 0 && errors == 0; }
+};
+
+// Per backend, in the order the run first met them.
+std::vector<BackendSummary> summarize(const RunResult& run);
+// The passing backend with the largest speedup; empty when none passes.
+std::string fastest_passing(const std::vector<BackendSummary>& summaries);
+// "fastest backend that passes here: NAME" (or "none"), as the console and the report say it.
+std::string fastest_line(const std::vector<BackendSummary>& summaries);
+
+// "WxH" (e.g. 320x180), each side 1..16384; InputError naming --size otherwise.
+std::pair<int, int> parse_size(const std::string& text);
 
 // Runs every scene through the reference backend and every backend asked
 // for; `log` gets one line per scene and backend as results come in.
@@ -123,8 +152,9 @@ void write_results_json(const RunResult& run, const std::filesystem::path& file)
 void write_results_csv(const RunResult& run, const std::filesystem::path& file);
 
 // A per-pixel heat map of |backend - reference| (max over channels), on a
-// fixed scale: black 0, through red at the threshold, to yellow and white at
-// 8x the threshold; NaN/Inf pixels magenta.
+// logarithmic scale: below the threshold from black (1/1000 of it or less)
+// to blue, one third of the way per factor of 10; from the threshold red
+// through yellow to white at 8x; NaN/Inf pixels magenta.
 Image heat_map(const Image& reference, const Image& image, float threshold);
 
 }  // namespace prism::conform

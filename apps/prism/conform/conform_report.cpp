@@ -89,20 +89,33 @@ struct Rgb {
   double r = 0, g = 0, b = 0;
 };
 
-// Where the heat map turns white, in multiples of the threshold; yellow sits
-// halfway on the log scale.
+// The heat map's scale, in multiples of the threshold: logarithmic from
+// kFloorScale (black) up to the threshold, then on to white at kWhiteScale,
+// yellow halfway there on the log scale.
+constexpr double kFloorScale = 1e-3;
 constexpr double kWhiteScale = 8;
 const double kYellowScale = std::sqrt(kWhiteScale);
+// Below the threshold: black to this blue, a third of the way per factor of 10.
+constexpr Rgb kBelowThreshold{0, 0.6, 1};
 
-// The colour a difference should have on screen (sRGB-encoded). Up to the
-// threshold it brightens from black to red; above, the scale is logarithmic
-// (red at 1x, yellow at ~2.8x, white at 8x) so that pixels just over the
-// threshold and wildly wrong ones still look different.
+// Where a multiple of the threshold sits on the legend's bar, 0 to 1.
+double legend_position(double scale) {
+  return std::log(scale / kFloorScale) / std::log(kWhiteScale / kFloorScale);
+}
+
+// The colour a difference should have on screen (sRGB-encoded). Blue below
+// the threshold, so that errors too small to fail still show, each decade
+// brighter; red at the threshold and above it towards yellow and white, so
+// that pixels just over and wildly wrong ones still look different.
 Rgb heat_colour(double difference, double threshold) {
   if (!std::isfinite(difference)) return {1, 0, 1};
   if (difference <= 0) return {0, 0, 0};
   const double scale = threshold > 0 ? difference / threshold : std::numeric_limits<double>::infinity();
-  if (scale <= 1) return {scale, 0, 0};
+  if (scale < 1) {
+    // 0 at the floor, 1 at the threshold.
+    const double below = std::max(0.0, std::log(scale / kFloorScale) / std::log(1 / kFloorScale));
+    return {below * kBelowThreshold.r, below * kBelowThreshold.g, below * kBelowThreshold.b};
+  }
   const double above = std::min(std::log(scale) / std::log(kWhiteScale), 1.0);  // 0 at 1x, 1 at 8x
   if (above <= 0.5) return {1, 2 * above, 0};
   return {1, 1, 2 * (above - 0.5)};
@@ -182,9 +195,25 @@ Json to_json(const BackendResult& b) {
           {"precision", b.precision},
           {"render_ms", number(b.render_ms)},
           {"compile_ms", number(b.compile_ms)},
+          {"prepare_ms", number(b.prepare_ms)},
+          {"first_frame_ms", number(b.first_frame_ms())},
           {"metrics", to_json(b.metrics)},
           {"attribution", to_json_array(b.attribution)},
           {"sweep", to_json_array(b.sweep)}};
+}
+
+Json to_json(const BackendSummary& s) {
+  return {{"backend", s.backend},
+          {"passed", s.passed},
+          {"failed", s.failed},
+          {"errors", s.errors},
+          {"skipped", s.skipped},
+          {"speedup", number(s.speedup)},
+          {"worst_max_error", number(s.worst_max_error)},
+          {"worst_rms_error", number(s.worst_rms_error)},
+          {"compile_ms", number(s.compile_ms)},
+          {"first_frame_ms", number(s.first_frame_ms)},
+          {"passes", s.passes()}};
 }
 
 Json to_json(const SceneResult& s) {
@@ -428,9 +457,12 @@ figcaption { margin-top: 4px; font-size: 13px; }
           font-size: 13px; color: #57606a; background: #f6f8fa; }
 .legend b { color: #1f2328; }
 .legend-bar { height: 14px; border: 1px solid #d0d7de;
-              background: linear-gradient(to right, #000 0%, #f00 33.3%, #ff0 66.7%, #fff 100%); }
-.legend-stops { display: flex; justify-content: space-between; margin-top: -6px; font-size: 12px; }
-.legend-stops span { text-align: center; }
+              background: linear-gradient(to right, #000 0%, #09f 76.9%, #f00 76.9%, #ff0 88.4%, #fff 100%); }
+.legend-stops { position: relative; height: 3em; margin: -6px 8px 0; font-size: 11px; }
+.legend-stops span { position: absolute; transform: translateX(-50%); text-align: center; white-space: nowrap; }
+details > summary { cursor: pointer; list-style-position: outside; }
+details > summary h2 { display: inline; }
+p.fastest { font-size: 16px; margin: 10px 0; }
 .swatch { display: inline-block; width: 12px; height: 12px; vertical-align: -2px; border: 1px solid #d0d7de; }
 ul { margin: 4px 0; padding-left: 20px; }
 li { margin: 3px 0; }
@@ -448,6 +480,8 @@ constexpr const char* kScript = R"(
 window.addEventListener('load', () => {
   document.body.dataset.imagesLoaded = Array.from(document.images).filter(i => i.naturalWidth > 0).length;
   document.body.dataset.charts = document.querySelectorAll('svg.chart').length;
+  const fastest = document.getElementById('fastest');
+  document.body.dataset.fastest = fastest ? fastest.innerText : '';
 });
 </script>
 )";
@@ -526,6 +560,42 @@ std::string summary_table(const RunResult& run, const std::vector<std::string>& 
   return table + "</table></div></section>\n";
 }
 
+std::string speedup_text(double speedup) {
+  if (!(speedup > 0)) return "—";
+  return formatted(speedup >= 10 ? "%.0f×" : "%.2g×", speedup);
+}
+
+std::string scene_counts_text(const BackendSummary& s) {
+  std::string text = std::to_string(s.passed) + " pass";
+  if (s.failed) text += ", " + std::to_string(s.failed) + " fail";
+  if (s.errors) text += ", " + std::to_string(s.errors) + " error";
+  if (s.skipped) text += ", " + std::to_string(s.skipped) + " skipped";
+  return text;
+}
+
+std::string backend_summary_row(const BackendSummary& s) {
+  const bool measured = s.compared > 0;
+  const std::string status = s.passes() ? "pass" : measured ? "fail" : "skipped";
+  auto cell = [&](const std::string& text) { return "<td>" + (measured ? text : "—") + "</td>"; };
+  return "<tr><td>" + html(s.backend) + "</td><td class=\"text\">" + status_badge(status) + " " +
+         html(scene_counts_text(s)) + "</td><td>" + speedup_text(s.speedup) + "</td>" +
+         cell(error_text(s.worst_max_error)) + cell(error_text(s.worst_rms_error)) + cell(ms_text(s.compile_ms)) +
+         cell(ms_text(s.first_frame_ms)) + "</tr>\n";
+}
+
+// Per backend over every scene, and the fastest one that passed them all.
+std::string backend_summary(const RunResult& run) {
+  const std::vector<BackendSummary> summaries = summarize(run);
+  std::string table =
+      "<section><h2>Backends</h2>\n<p class=\"fastest\" id=\"fastest\">" + html(fastest_line(summaries)) +
+      "</p>\n<div class=\"scroll\"><table><tr><th class=\"text\">backend</th><th class=\"text\">scenes</th>"
+      "<th title=\"geometric mean over the scenes of reference time / render time\">speed vs reference</th>"
+      "<th>worst max error</th><th>worst RMS error</th><th>compile (total)</th>"
+      "<th title=\"prepare + compile + render, mean over the scenes\">first frame (mean)</th></tr>\n";
+  for (const BackendSummary& s : summaries) table += backend_summary_row(s);
+  return table + "</table></div></section>\n";
+}
+
 std::string settings_text(const ImageSettings& settings) {
   return formatted("%d×%d, %d spp, max depth %d", settings.width, settings.height, settings.spp, settings.max_depth);
 }
@@ -534,11 +604,16 @@ std::string settings_text(const ImageSettings& settings) {
 // explains their colours.
 std::string heat_map_legend(const ImageSettings& settings, float threshold) {
   const double t = float_as_decimal(threshold);
-  const std::string stops = "<span>0</span><span>" + formatted("%g", t) + "<br>threshold</span><span>" +
-                            formatted("%.3g", t * kYellowScale) + "</span><span>≥ " +
-                            formatted("%.3g", t * kWhiteScale) + "</span>";
+  auto stop = [&](double scale, const std::string& text) {
+    return formatted("<span style=\"left:%.1f%%\">", 100 * legend_position(scale)) + text + "</span>";
+  };
+  const std::string stops = stop(kFloorScale, "≤ " + formatted("%.2g", t * kFloorScale)) +
+                            stop(1e-2, formatted("%.2g", t * 1e-2)) + stop(1e-1, formatted("%.2g", t * 1e-1)) +
+                            stop(1, formatted("%g", t) + "<br>threshold") +
+                            stop(kWhiteScale, "≥ " + formatted("%.3g", t * kWhiteScale));
   return box("legend", display_size(settings),
-             "<div><b>Difference heat maps</b><br>max over channels of |backend − reference|</div>"
+             "<div><b>Difference heat maps</b><br>max over channels of |backend − reference|, log scale: "
+             "blue below the threshold (a third brighter per factor of 10), red to white above</div>"
              "<div class=\"legend-bar\"></div><div class=\"legend-stops\">" +
                  stops + "</div><div><span class=\"swatch\" style=\"background:#f0f\"></span> NaN or Inf</div>");
 }
@@ -798,11 +873,22 @@ std::string error_time_chart(const SceneResult& scene, const Palette& palette) {
   return "<h3>Error vs time</h3>\n" + svg + chart_legend(series, frame) + "</svg>\n" + against;
 }
 
+// A scene where a backend failed or errored: its section starts open.
+bool has_failure(const SceneResult& scene) {
+  for (const BackendResult& b : scene.backends)
+    if (b.status == "fail" || b.status == "error") return true;
+  return false;
+}
+
+// Collapsed (<details>) when every backend passed or was skipped, open otherwise.
 std::string scene_section(const SceneResult& scene, size_t index, const Caps& caps, const Palette& palette) {
-  return "<section id=\"" + scene_anchor(index) + "\"><h2>" + html(scene_title(scene)) + "</h2>\n<p class=\"meta\">" +
+  const bool failed = has_failure(scene);
+  return "<section id=\"" + scene_anchor(index) + "\"><details" + (failed ? " open" : "") + "><summary><h2>" +
+         html(scene_title(scene)) + "</h2> " + status_badge(failed ? "fail" : "pass") +
+         "</summary>\n<p class=\"meta\">" +
          html(settings_text(scene.image)) + (scene.file.empty() ? "" : " · " + html(scene.file.string())) + "</p>\n" +
          gallery(scene, caps.threshold) + metrics_table(scene, caps) + attribution_list(scene) + reason_list(scene) +
-         error_time_chart(scene, palette) + "</section>\n";
+         error_time_chart(scene, palette) + "</details></section>\n";
 }
 
 // The stability suite's table and chart, as its runner wrote them.
@@ -830,7 +916,7 @@ std::string report_html(const RunResult& run) {
       "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n"
       "<title>Prism conformance report</title>\n<style>" +
       std::string(kStyle) + "</style></head>\n<body>\n";
-  page += page_header(run, names.size()) + summary_table(run, names);
+  page += page_header(run, names.size()) + backend_summary(run) + summary_table(run, names);
   for (size_t i = 0; i < run.scenes.size(); ++i) page += scene_section(run.scenes[i], i, run.caps, palette);
   if (run.stability) page += stability_section(*run.stability);
   return page + kScript + "</body></html>\n";
@@ -856,10 +942,16 @@ Image heat_map(const Image& reference, const Image& image, float threshold) {
 void write_results_json(const RunResult& run, const fs::path& file) {
   Json scenes = Json::array();
   for (const SceneResult& scene : run.scenes) scenes.push_back(to_json(scene));
+  const std::vector<BackendSummary> summaries = summarize(run);
+  Json backends = Json::array();
+  for (const BackendSummary& s : summaries) backends.push_back(to_json(s));
+  const std::string fastest = fastest_passing(summaries);
   const Json root = {{"started", run.started},
                      {"wall_ms", number(run.wall_ms)},
                      {"passed", run.passed()},
                      {"caps", to_json(run.caps)},
+                     {"fastest_passing", fastest.empty() ? Json(nullptr) : Json(fastest)},
+                     {"backends", std::move(backends)},
                      {"scenes", std::move(scenes)}};
   write_text_file_atomically(file, root.dump(2) + "\n");
 }

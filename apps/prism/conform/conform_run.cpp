@@ -4,12 +4,14 @@
 #include <ctime>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "cli_common.hpp"
 #include "conform/conform.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
+#include "prism/limits.hpp"
 #include "prism/scene_loader.hpp"
 
 namespace prism::conform {
@@ -110,6 +112,7 @@ class SceneRun {
 
   SceneResult run(const fs::path& file, const std::vector<Subject>& subjects) {
     Scene scene = load_scene(file, registry_);
+    if (options_.size) std::tie(scene.image.width, scene.image.height) = *options_.size;
     SceneResult result;
     result.name = file.stem().string();
     result.file = file;
@@ -164,7 +167,9 @@ class SceneRun {
     }
     try {
       const std::unique_ptr<Backend> backend = start_backend(*subject.plugin, subject.name);
+      const cli::PhaseTimer prepare_timer;
       backend->prepare(scene);
+      b.prepare_ms = prepare_timer.total();
       Timed t = timed_render(*backend, settings_for(scene, false));
       const BackendStats stats = backend->stats();
       b.device = stats.info.count("device") ? stats.info.at("device") : probe.reason;
@@ -295,6 +300,69 @@ std::string verdict(const Metrics& m, const Caps& caps, bool double_precision) {
     add(std::to_string(m.pixels_over) + " pixels (" + percent(fraction(m.pixels_over, m.pixels)) + ") over " +
         std::to_string(caps.threshold).substr(0, 5) + ", cap " + percent(caps.all_over));
   return why;
+}
+
+std::vector<BackendSummary> summarize(const RunResult& run) {
+  std::vector<BackendSummary> summaries;
+  std::map<std::string, double> log_speedup_sum;
+  std::map<std::string, int> speedups;
+  auto summary_of = [&](const std::string& name) -> BackendSummary& {
+    for (BackendSummary& s : summaries)
+      if (s.backend == name) return s;
+    summaries.push_back({});
+    summaries.back().backend = name;
+    return summaries.back();
+  };
+  for (const SceneResult& scene : run.scenes) {
+    for (const BackendResult& b : scene.backends) {
+      BackendSummary& s = summary_of(b.backend);
+      if (b.status == "skipped") ++s.skipped;
+      if (b.status == "error") ++s.errors;
+      if (b.status != "pass" && b.status != "fail") continue;
+      ++(b.status == "pass" ? s.passed : s.failed);
+      ++s.compared;
+      s.worst_max_error = std::max(s.worst_max_error, b.metrics.max_error);
+      s.worst_rms_error = std::max(s.worst_rms_error, b.metrics.rms_error);
+      s.compile_ms += b.compile_ms;
+      s.first_frame_ms += b.first_frame_ms();
+      // A ratio of times averages as a geometric mean: 2x faster and 2x slower cancel.
+      if (b.render_ms > 0 && scene.reference_ms > 0) {
+        log_speedup_sum[b.backend] += std::log(scene.reference_ms / b.render_ms);
+        ++speedups[b.backend];
+      }
+    }
+  }
+  for (BackendSummary& s : summaries) {
+    if (s.compared > 0) s.first_frame_ms /= s.compared;
+    if (speedups[s.backend] > 0) s.speedup = std::exp(log_speedup_sum[s.backend] / speedups[s.backend]);
+  }
+  return summaries;
+}
+
+std::string fastest_passing(const std::vector<BackendSummary>& summaries) {
+  const BackendSummary* fastest = nullptr;
+  for (const BackendSummary& s : summaries)
+    if (s.passes() && (!fastest || s.speedup > fastest->speedup)) fastest = &s;
+  return fastest ? fastest->backend : "";
+}
+
+std::string fastest_line(const std::vector<BackendSummary>& summaries) {
+  const std::string fastest = fastest_passing(summaries);
+  return "fastest backend that passes here: " + (fastest.empty() ? std::string("none") : fastest);
+}
+
+std::pair<int, int> parse_size(const std::string& text) {
+  const auto fail = [&] {
+    throw InputError("--size: expected WIDTHxHEIGHT with each side in [1, " + std::to_string(limits::kMaxImageSide) +
+                     "] (e.g. 320x180), got '" + text + "'");
+  };
+  const size_t x = text.find('x');
+  if (x == std::string::npos || x == 0 || x + 1 == text.size() || text.size() > 11) fail();
+  for (size_t i = 0; i < text.size(); ++i)
+    if (i != x && (text[i] < '0' || text[i] > '9')) fail();
+  const int width = std::stoi(text.substr(0, x)), height = std::stoi(text.substr(x + 1));
+  if (width < 1 || width > limits::kMaxImageSide || height < 1 || height > limits::kMaxImageSide) fail();
+  return {width, height};
 }
 
 bool RunResult::passed() const {

@@ -1,6 +1,7 @@
 #include "camera_controller.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
@@ -18,6 +19,20 @@ std::optional<glm::dvec3> vec3_member(const nlohmann::json& object, const char* 
   }
   return v;
 }
+
+// The shortest text that reads back as exactly `v`.
+std::string number_text(double v) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, v);
+  return std::string(text, result.ptr);
+}
+
+std::string vec3_text(const glm::dvec3& v) {
+  return "[" + number_text(v.x) + ", " + number_text(v.y) + ", " + number_text(v.z) + "]";
+}
+
+// A quarter of the diagonal: the scene crossed in about four seconds.
+constexpr double kSceneDiagonalsPerSecond = 0.25;
 
 }  // namespace
 
@@ -45,6 +60,14 @@ std::optional<Box3> scene_bounds(const Scene& scene) {
     }
   }
   return box;
+}
+
+double fly_speed(const std::optional<Box3>& bounds, double target_distance) {
+  if (bounds) {
+    const double diagonal = glm::length(bounds->hi - bounds->lo);
+    if (diagonal > 0.0 && std::isfinite(diagonal)) return diagonal * kSceneDiagonalsPerSecond;
+  }
+  return target_distance;
 }
 
 OrbitStart orbit_start(const Camera& camera, const CameraHints& hints, const std::optional<Box3>& bounds) {
@@ -115,6 +138,13 @@ void CameraController::rebuild_basis() {
   camera_.forward = glm::normalize(target_ - camera_.position);
   camera_.right = glm::normalize(glm::cross(camera_.forward, world_up_));
   camera_.up = glm::cross(camera_.right, camera_.forward);
+}
+
+std::string camera_json(const CameraController& controller) {
+  const Camera& camera = controller.camera();
+  return "\"camera\": {\"position\": " + vec3_text(camera.position) + ", \"look_at\": " +
+         vec3_text(controller.target()) + ", \"up\": " + vec3_text(controller.world_up()) +
+         ", \"fov_y\": " + number_text(camera.fov_y) + "}";
 }
 
 }  // namespace prism::viewer

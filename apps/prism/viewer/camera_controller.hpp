@@ -48,6 +48,12 @@ OrbitStart orbit_start(const Camera& camera, const CameraHints& hints, const std
 // The union of the bounded objects' world boxes, if any object is bounded.
 std::optional<Box3> scene_bounds(const Scene& scene);
 
+// How fast W/A/S/D/E/Q fly, in world units per second: a quarter of the
+// diagonal of the bounded objects' box (the scene crossed in about four
+// seconds, whatever its units), or `target_distance` per second when no
+// object is bounded or the box is a point.
+double fly_speed(const std::optional<Box3>& bounds, double target_distance);
+
 class CameraController {
  public:
   CameraController(const Camera& initial, const OrbitStart& start);
@@ -86,5 +92,11 @@ class CameraController {
   glm::dvec3 target_;
   double initial_distance_, distance_;
 };
+
+// The controller's camera as a scene file's camera member, one line:
+//   "camera": {"position": [...], "look_at": [...], "up": [...], "fov_y": 35}
+// look_at is the orbit target and up the world up, from which the loader
+// builds this same basis; numbers are written to read back exactly.
+std::string camera_json(const CameraController& controller);
 
 }  // namespace prism::viewer

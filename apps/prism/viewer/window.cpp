@@ -47,7 +47,10 @@ struct Window::Callbacks {
     if (key == GLFW_KEY_ESCAPE) in.quit = true;
     if (key == GLFW_KEY_P) in.screenshot = true;
     if (key == GLFW_KEY_R) in.reset = true;
+    if (key == GLFW_KEY_C) in.print_camera = true;
+    if (key == GLFW_KEY_H) in.toggle_help = true;
   }
+  static void refresh(GLFWwindow* w) { self(w)->input_.refresh = true; }
   static void cursor(GLFWwindow* w, double x, double y) {
     Window* win = self(w);
     if (win->have_last_ && glfwGetMouseButton(w, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS) {
@@ -88,6 +91,7 @@ Window::Window(int width, int height, const std::string& title) {
   glfwSetCursorPosCallback(window_, Callbacks::cursor);
   glfwSetScrollCallback(window_, Callbacks::scroll);
   glfwSetWindowCloseCallback(window_, Callbacks::close);
+  glfwSetWindowRefreshCallback(window_, Callbacks::refresh);
   glfwMakeContextCurrent(window_);
   glfwSwapInterval(0);  // frames are paced by rendering, and the frame rate shown is the renderer's
 }

@@ -22,6 +22,9 @@ struct Input {
   double scroll = 0;              // wheel clicks, positive away from the user
   bool screenshot = false;        // P
   bool reset = false;             // R
+  bool print_camera = false;      // C
+  bool toggle_help = false;       // H
+  bool refresh = false;           // the window's contents were damaged: draw again
   bool quit = false;              // Esc or the window's close button
   // Held keys, sampled at take_input(): +1 / -1 / 0 along each fly axis.
   int fly_right = 0, fly_up = 0, fly_forward = 0;

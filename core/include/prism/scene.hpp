@@ -112,6 +112,9 @@ struct Scene {
   std::vector<Object> objects;
   // The primitive plugins this scene uses (kept alive while the scene lives).
   std::vector<std::shared_ptr<const PrimitivePlugin>> plugins;
+  // What the loader found suspicious but valid, each "source: path: what"
+  // (no light at all, a colour in 0-255, an object behind the camera).
+  std::vector<std::string> warnings;
 
   std::vector<std::string> plugin_names() const;
   // Bytes of the objects' frames and packed records: what every backend

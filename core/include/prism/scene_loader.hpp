@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -12,14 +13,23 @@
 
 namespace prism {
 
-// Throws InputError on any problem with the file or what it names.
+// The file name that stands for standard input, and how messages name it.
+inline constexpr const char* kStandardInput = "-";
+inline constexpr const char* kStandardInputName = "<stdin>";
+
+// Throws InputError on any problem with the file or what it names. The file
+// "-" is standard input, its texture paths relative to the current directory.
+// What loads but looks wrong is left in Scene::warnings.
 Scene load_scene(const std::filesystem::path& file, Registry& registry);
 
 // The same from JSON text; relative texture paths resolve against `base_dir`.
 Scene load_scene_from_string(const std::string& json, const std::filesystem::path& base_dir,
                              Registry& registry, const std::string& source_name = "<string>");
 
-// The text of a scene file, refused (InputError) when it cannot be read or
+// Each of the scene's warnings as a line "prism: warning: ..." (stderr for the command line).
+void write_warnings(const Scene& scene, std::ostream& out);
+
+// The text of a scene file ("-": standard input), refused (InputError) when it cannot be read or
 // is over limits::kMaxSceneFileBytes.
 std::string read_scene_text(const std::filesystem::path& file);
 
