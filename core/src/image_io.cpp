@@ -11,6 +11,7 @@
 #include <cstring>
 
 #include "image_codecs.hpp"
+#include "image_module.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
@@ -218,13 +219,34 @@ void write_file_atomically(const fs::path& file, const std::function<void(const 
   StagedFile(file, write).commit();
 }
 
+const std::vector<std::string>& image_output_extensions() {
+  static const std::vector<std::string> extensions = {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr"};
+  return extensions;
+}
+
 StagedFile stage_image(const Image& image, const fs::path& file) {
   const std::string ext = lower_extension(file);
-  if (ext != ".png" && ext != ".exr") throw InputError(file.string() + ": unsupported output type '" + ext + "'");
-  return StagedFile(file, [&](const fs::path&, int fd) {
-    if (ext == ".png") codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
-    else codec::write_exr(fd, exr_pixels(image), PixelFormat::Float);
+  const auto& known = image_output_extensions();
+  if (std::find(known.begin(), known.end(), ext) == known.end())
+    throw InputError(file.string() + ": unsupported output type '" + ext + "'");
+  return StagedFile(file, [&](const fs::path& temporary, int fd) {
+    if (ext == ".png") return codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
+    if (ext == ".exr") return codec::write_exr(fd, exr_pixels(image), PixelFormat::Float);
+    // The rest through OpenImageIO, which writes the temporary by its name
+    // (it keeps the extension, so OpenImageIO picks the format); the error
+    // names the file asked for, not the temporary.
+    const std::string error = ext == ".hdr" ? write_with_openimageio(temporary, exr_pixels(image), PixelFormat::Float)
+                                            : write_with_openimageio(temporary, png_pixels(image), PixelFormat::UInt8);
+    if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
   });
+}
+
+void write_png_to(const Image& image, int fd, const std::string& name) {
+  try {
+    codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
+  } catch (const codec::CodecError& e) {
+    throw RuntimeError("cannot write " + name + ": " + e.what());
+  }
 }
 
 void write_image(const Image& image, const fs::path& file) { stage_image(image, file).commit(); }

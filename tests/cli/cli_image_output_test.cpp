@@ -51,8 +51,8 @@ TEST_F(ImageOutput, ATextureOnlyOpenImageIOReadsLoadsIt) {
 
 // libpng prints its warnings and errors on stderr unless a handler takes
 // them: a texture with a damaged ancillary chunk (a warning, the chunk is
-// dropped) renders with nothing on stderr, and a cut one fails with Prism's
-// one-line message only.
+// dropped) renders with nothing on stderr (-q: not even Prism's summary
+// line), and a cut one fails with Prism's one-line message only.
 TEST_F(ImageOutput, LibpngPrintsNothingOfItsOwn) {
   write_image_file(path("tex.png"), ImageFile{2, 2, 3, {}, PixelFormat::UInt8, std::vector<float>(12, 0.5f)},
                    PixelFormat::UInt8);
@@ -67,7 +67,7 @@ TEST_F(ImageOutput, LibpngPrintsNothingOfItsOwn) {
     text.extra = std::string(R"("textures": {"t": ")") + texture + R"("}, "materials": {"m": {"texture": "t"}})";
     text.objects = R"([{"type": "sphere", "radius": 1, "material": "m"}])";
     scene_ = write("textured.json", text.text()).string();
-    const RunResult r = render(path("out.png"));
+    const RunResult r = render(path("out.png"), {"-q"});
     if (std::string(texture) == "damaged.png") {
       EXPECT_TRUE(ExitedWith(r, 0));
       EXPECT_EQ(r.err, "");
