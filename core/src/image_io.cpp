@@ -90,6 +90,9 @@ void probe_temporary(const fs::path& file) {
   ::unlink(tmp.c_str());
 }
 
+// libjpeg's scale: 95 keeps a rendering's edges and gradients visibly intact.
+constexpr int kJpegQuality = 95;
+
 ImageFile png_pixels(const Image& image) {
   ImageFile file{image.width, image.height, 3, {}, PixelFormat::UInt8, {}};
   file.pixels.resize(image.rgb.size());
@@ -232,11 +235,12 @@ StagedFile stage_image(const Image& image, const fs::path& file) {
   return StagedFile(file, [&](const fs::path& temporary, int fd) {
     if (ext == ".png") return codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
     if (ext == ".exr") return codec::write_exr(fd, exr_pixels(image), PixelFormat::Float);
-    // The rest through OpenImageIO, which writes the temporary by its name
-    // (it keeps the extension, so OpenImageIO picks the format); the error
-    // names the file asked for, not the temporary.
-    const std::string error = ext == ".hdr" ? write_with_openimageio(temporary, exr_pixels(image), PixelFormat::Float)
-                                            : write_with_openimageio(temporary, png_pixels(image), PixelFormat::UInt8);
+    if (ext == ".jpg" || ext == ".jpeg") return codec::write_jpeg(fd, png_pixels(image), kJpegQuality);
+    if (ext == ".hdr") return codec::write_hdr(fd, exr_pixels(image));
+    // TIFF through OpenImageIO (libtiff reports failed writes), which writes
+    // the temporary by its name: it keeps the extension, so OpenImageIO
+    // picks the format. The error names the file asked for.
+    const std::string error = write_with_openimageio(temporary, png_pixels(image), PixelFormat::UInt8);
     if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
   });
 }

@@ -139,6 +139,17 @@ TEST_F(Conventions, VerbosePrintsThreadsAndPhaseTimes) {
   EXPECT_EQ(two.err.rfind("threads: 2\n", 0), 0u) << two;
 }
 
+TEST_F(Conventions, TraceVerbosePrintsPhaseTimes) {
+  write("rays.csv", "0,0,-5,0,0,1\n");
+  const RunResult r = run({"trace", scene_, "-b", "reference", "--rays", path("rays.csv").string(), "-o",
+                           path("hits.csv").string(), "-v"});
+  ASSERT_TRUE(ExitedWith(r, 0));
+  const std::string ms = "[0-9]+\\.[0-9] ms";
+  EXPECT_TRUE(std::regex_match(
+      r.err, std::regex("phases: load " + ms + ", build " + ms + ", compile " + ms + ", render " + ms + ", total " + ms + "\n")))
+      << r;
+}
+
 TEST_F(Conventions, BadThreadsOrQuietAndVerboseAreRejected) {
   expect_rejected({"render", scene_, "-b", "reference", "-o", path("out.png").string(), "--threads", "0"},
                   "--threads: must be at least 1, got 0");
@@ -211,6 +222,15 @@ TEST_F(Conventions, OutputFormatsFollowTheExtension) {
   for (size_t p = 0; p < exr.pixels.size(); p += 3) {
     const float largest = std::max({exr.pixels[p], exr.pixels[p + 1], exr.pixels[p + 2]});
     for (size_t c = 0; c < 3; ++c) EXPECT_NEAR(hdr.pixels[p + c], exr.pixels[p + c], largest / 128.0f) << p;
+  }
+}
+
+// JPEG and Radiance HDR have writers of Prism's own; only TIFF needs OpenImageIO.
+TEST_F(Conventions, OnlyTiffLoadsOpenImageIO) {
+  for (const std::string name : {"out.jpg", "out.hdr", "out.tif"}) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(ExitedWith(render(path(name).string(), {"-q", "--stats", path("s.json").string()}), 0));
+    EXPECT_EQ(nlohmann::json::parse(read_file(path("s.json")))["loaded_libraries"]["openimageio"], name == "out.tif");
   }
 }
 

@@ -115,6 +115,25 @@ TEST_F(FullDiskOutput, AnImageIsNotReplaced) {
   }
 }
 
+// The formats OpenImageIO writes are staged the same way: its failure on a
+// full disk is exit status 1 naming the file, and the older one stays.
+TEST_F(FullDiskOutput, AnImageOpenImageIOWritesIsNotReplaced) {
+  for (const char* name : {"out.tif", "out.jpg", "out.hdr"}) {
+    SCOPED_TRACE(name);
+    const fs::path out = disk_ / name;
+    ASSERT_TRUE(ExitedWith(render(out, {"--width", "16", "--height", "12"}), 0));
+    const std::string before = read_file(out);
+    fill();
+    const RunResult r = render(out, {"--width", "32", "--height", "24"});
+    EXPECT_TRUE(ExitedWith(r, 1));
+    EXPECT_TRUE(StderrHas(r, {"prism: error: cannot write " + out.string() + ": "}));
+    EXPECT_EQ(read_file(out), before);
+    EXPECT_EQ(leftovers(), std::vector<std::string>{name});
+    fs::remove(disk_ / "filler");
+    fs::remove(out);
+  }
+}
+
 // The image and the statistics are both written before either replaces its
 // older file: the statistics failing leaves the older image too.
 TEST_F(FullDiskOutput, FailedStatisticsLeaveTheImageAsItWas) {

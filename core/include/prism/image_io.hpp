@@ -42,11 +42,11 @@ class StagedFile {
 };
 
 // .png: 8-bit sRGB of the clamped values; .exr: linear float RGB plus the
-// `id` / `path` channels the image carries. Both through Prism's own writers;
-// the other image_output_extensions() through OpenImageIO (loaded then):
-// .jpg/.jpeg and .tif/.tiff 8-bit sRGB as PNG, .hdr linear float RGB. Throws
-// InputError for an unsupported extension and RuntimeError when the file
-// cannot be written.
+// `id` / `path` channels the image carries; .jpg/.jpeg (quality 95) and
+// .tif/.tiff: the same 8-bit codes as PNG; .hdr: linear RGB as Radiance
+// RGBE. All through Prism's own writers but TIFF, which goes through
+// OpenImageIO (loaded then). Throws InputError for an unsupported extension
+// and RuntimeError when the file cannot be written.
 void write_image(const Image& image, const std::filesystem::path& file);
 StagedFile stage_image(const Image& image, const std::filesystem::path& file);
 
