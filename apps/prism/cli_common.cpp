@@ -89,7 +89,7 @@ StagedFile stage_stats(const std::string& file, const BackendChoice& choice, con
   nlohmann::ordered_json times;
   for (const auto& [phase, value] : phase_times(choice, timer, std::move(ms))) times[phase] = value;
   j["ms"] = times;
-  // Whether this run needed OpenImageIO (PNG, JPEG and EXR do not).
+  // Whether this run needed OpenImageIO (PNG, JPEG, EXR and HDR output do not).
   j["loaded_libraries"] = {{"openimageio", openimageio_loaded()}};
   return stage_text_file(file, j.dump(2) + "\n");
 }
@@ -181,9 +181,11 @@ std::function<void(double)> progress_bar(const ProgressLabel& label) {
   return [label](double fraction) {
     const int percent = std::clamp(static_cast<int>(fraction * 100.0), 0, 100);
     std::lock_guard lock(progress_mutex);
-    // Redrawn when the percentage moves, or every quarter second for the clock.
+    // Redrawn when the percentage moves on, or every quarter second for the
+    // clock; a thread's report older than what is shown is dropped.
     const auto now = std::chrono::steady_clock::now();
-    if (percent <= progress_drawn && now - progress_redrawn < std::chrono::milliseconds(250)) return;
+    if (percent < progress_drawn) return;
+    if (percent == progress_drawn && now - progress_redrawn < std::chrono::milliseconds(250)) return;
     progress_drawn = percent;
     progress_line_open = 1;
     progress_redrawn = now;

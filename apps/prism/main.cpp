@@ -64,12 +64,13 @@ int print_help(CLI::App& app, int argc, char** argv) {
   }
   CLI::App* sub = find_command(app, argv[2]);
   if (!sub) return unknown_command(app, argv[2]);
-  std::fputs(sub->help().c_str(), stdout);
+  std::fputs(sub->help(app.get_name()).c_str(), stdout);  // "Usage: prism render ...", as `prism render --help`
   return 0;
 }
 
 // What CLI11 would answer with "A subcommand is required": no command, a
-// mistyped one, `help` and `--version`. Nothing when CLI11 should parse.
+// mistyped one or a mistyped option before it, `help` and `--version`.
+// Nothing when CLI11 should parse.
 std::optional<int> answer_before_parsing(CLI::App& app, int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "prism: error: a command is required (commands: %s; `prism help` describes them)\n",
@@ -79,34 +80,50 @@ std::optional<int> answer_before_parsing(CLI::App& app, int argc, char** argv) {
   const std::string first = argv[1];
   if (first == "--version") return prism::cli::run_version();
   if (first == "help") return print_help(app, argc, argv);
-  if (first.empty() || first[0] != '-')
+  if (first == "-h" || first == "--help") return std::nullopt;
+  if (first.empty() || first[0] != '-') {
     if (!find_command(app, first)) return unknown_command(app, first);
-  return std::nullopt;
+    return std::nullopt;
+  }
+  std::fprintf(stderr, "prism: error: unexpected argument: %s (`prism help` lists the commands and options)\n",
+               first.c_str());
+  return 2;
+}
+
+// `prism help render` when the command line names the command, else `prism help`.
+std::string help_hint(CLI::App& app, int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (find_command(app, argv[i])) return std::string("prism help ") + argv[i];
+  return "prism help";
 }
 
 // CLI11 lists the arguments it did not expect last first (`--b --a` for
 // `--a --b`): they are said in the order given, with where to find the flags.
 int report_unexpected(CLI::App& app, const CLI::ExtrasError& e, int argc, char** argv) {
   const std::string what = e.what();
+  const std::string listed = what.substr(what.find(": ") + 2);
   std::vector<std::string> words;
-  std::istringstream list(what.substr(what.find(": ") + 2));
+  std::istringstream list(listed);
   for (std::string word; list >> word;) words.push_back(word);
-  std::string in_order, command;
+  std::string in_order;
   size_t found = 0;
   for (int i = 1; i < argc; ++i) {
     const auto word = std::find(words.begin(), words.end(), argv[i]);
-    if (word != words.end()) {
-      in_order += (in_order.empty() ? "" : " ") + *word;
-      words.erase(word);
-      ++found;
-    } else if (command.empty() && find_command(app, argv[i])) {
-      command = argv[i];
-    }
+    if (word == words.end()) continue;
+    in_order += (in_order.empty() ? "" : " ") + *word;
+    words.erase(word);
+    ++found;
   }
-  if (!words.empty() || found == 0) in_order = what.substr(what.find(": ") + 2);  // not split as it was given
-  const std::string help = command.empty() ? "prism help" : "prism help " + command;
+  if (!words.empty() || found == 0) in_order = listed;  // not split as it was given
   std::fprintf(stderr, "prism: error: unexpected argument%s: %s (`%s` lists the flags)\n", found == 1 ? "" : "s",
-               in_order.c_str(), help.c_str());
+               in_order.c_str(), help_hint(app, argc, argv).c_str());
+  return 2;
+}
+
+// Any other parse error (a missing value, a required option, a value that
+// is not a number) in the form of Prism's other errors.
+int report_parse_error(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  std::fprintf(stderr, "prism: error: %s (`%s` lists the flags)\n", e.what(), help_hint(app, argc, argv).c_str());
   return 2;
 }
 
@@ -149,8 +166,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::ExtrasError& e) {
     return report_unexpected(app, e, argc, argv);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
+    return report_parse_error(app, e, argc, argv);
   }
   prism::cli::stop_on_interrupt();
   try {

@@ -71,6 +71,8 @@ TEST_F(Conventions, HelpCommandPrintsTheHelp) {
   const RunResult render_help = run({"help", "render"});
   ASSERT_TRUE(ExitedWith(render_help, 0));
   EXPECT_NE(render_help.out.find("--camera-position"), std::string::npos) << render_help;
+  EXPECT_EQ(render_help.out, run({"render", "--help"}).out);
+  EXPECT_NE(render_help.out.find("\nUsage: prism render [OPTIONS] scene\n"), std::string::npos) << render_help;
 }
 
 TEST_F(Conventions, UnknownCommandIsNamedAndTheCommandsListed) {
@@ -96,6 +98,15 @@ TEST_F(Conventions, UnknownFlagsAreReportedInTheOrderGiven) {
   expect_rejected({"render", scene_, "-o", path("out.png").string(), "--zebra", "--aardvark", "--mole"},
                   "unexpected arguments: --zebra --aardvark --mole (`prism help render` lists the flags)");
   expect_rejected({"list", "--zebra"}, "unexpected argument: --zebra (`prism help list` lists the flags)");
+  expect_rejected({"--versio"}, "unexpected argument: --versio (`prism help` lists the commands and options)");
+}
+
+// CLI11's other errors in Prism's form, with where to look.
+TEST_F(Conventions, ParseErrorsSayWhereTheFlagsAreListed) {
+  expect_rejected({"render", "-o", path("out.png").string()},
+                  "scene is required (`prism help render` lists the flags)");
+  expect_rejected({"render", scene_, "-o", path("out.png").string(), "--spp", "many"},
+                  "Could not convert: --spp = many (`prism help render` lists the flags)");
 }
 
 // ------------------------------------------------------ summary and -q, -v
