@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -139,6 +140,18 @@ void stop_on_interrupt() {
   sigemptyset(&deadline.sa_mask);
   sigaction(SIGALRM, &deadline, nullptr);
 }
+
+void check_thread_count(const std::optional<int>& threads) {
+  if (threads && *threads < 1) throw InputError("--threads: must be at least 1, got " + std::to_string(*threads));
+}
+
+std::shared_ptr<void> limit_threads(const std::optional<int>& threads) {
+  check_thread_count(threads);
+  if (!threads) return nullptr;
+  return std::make_shared<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(*threads));
+}
+
+size_t thread_limit() { return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism); }
 
 std::string format_duration(double ms) {
   char text[32];

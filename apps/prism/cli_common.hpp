@@ -5,6 +5,7 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -85,6 +86,15 @@ void finish_progress_bar();
 // Before a message while a bar may be half drawn (an error, an interrupt):
 // ends its line, so that the message is not glued to it.
 void end_progress_line();
+
+// --threads N: InputError unless N >= 1.
+void check_thread_count(const std::optional<int>& threads);
+// TBB's worker limit for the run (the CPU backends render and trace with
+// TBB in this process), held while the returned object lives; no limit when
+// `threads` is empty. Checks it first.
+std::shared_ptr<void> limit_threads(const std::optional<int>& threads);
+// The number of threads TBB may use now (-v says it).
+size_t thread_limit();
 
 // "1.7 s", "85 ms"; "7.0 Mrays/s", "350.2 krays/s".
 std::string format_duration(double ms);

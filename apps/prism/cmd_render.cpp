@@ -1,7 +1,6 @@
 // prism render SCENE [-b BACKEND] -o OUT.(png|exr|jpg|tif|hdr|-) [overrides] [--aov id,path] [--stats F.json]
 //   [--frames N [--orbit DEG] | --cameras FILE] [--camera-position X,Y,Z --look-at X,Y,Z] [--fov DEG]
 //   [--threads N] [-q | -v] [--mpi [--tile N]]
-#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -59,8 +58,7 @@ void check_stdout_output(const RenderArgs& args) {
 // Everything about the command line that can be wrong, found before anything is loaded.
 void check_arguments(const RenderArgs& args) {
   if (args.quiet && args.verbose) throw InputError("-q and -v: give one or the other");
-  if (args.threads && *args.threads < 1)
-    throw InputError("--threads: must be at least 1, got " + std::to_string(*args.threads));
+  check_thread_count(args.threads);
   check_camera_flags(args.camera);
   if (!args.camera.position.empty() && !args.cameras.empty())
     throw InputError("--camera-position and --cameras: give one or the other");
@@ -94,17 +92,10 @@ void print_summary(const RenderArgs& args, const FramePlan& plan, const std::str
   std::fprintf(stderr, "%s\n", line.c_str());
 }
 
-// TBB's threads for the run (the CPU backends render with TBB in this
-// process); the limit holds while the returned object lives.
-std::optional<tbb::global_control> limit_threads(const RenderArgs& args) {
-  if (!args.threads) return std::nullopt;
-  return std::make_optional<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(*args.threads));
-}
-
 // One image, or each frame of a camera path, from one prepared backend.
 int run_render(const RenderArgs& args) {
   check_outputs(args);
-  const auto threads = limit_threads(args);
+  const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;
   Registry registry;
@@ -140,7 +131,7 @@ int run_render(const RenderArgs& args) {
   if (for_stdout) write_png_to(*for_stdout, STDOUT_FILENO, "standard output");
   if (stats) stats->commit();
   if (args.verbose) {
-    std::fprintf(stderr, "threads: %zu\n", tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    std::fprintf(stderr, "threads: %zu\n", thread_limit());
     std::fprintf(stderr, "phases: %s\n", phase_times_line(phase_times(choice, timer, ms)).c_str());
   }
   if (!args.quiet) print_summary(args, plan, choice.name, settings, ms["render"], choice.backend->stats().rays);

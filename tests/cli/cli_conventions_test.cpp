@@ -173,6 +173,10 @@ TEST_F(Conventions, BadThreadsOrQuietAndVerboseAreRejected) {
                   "--threads: must be at least 1, got -3");
   expect_rejected({"render", scene_, "-b", "reference", "-o", path("out.png").string(), "-q", "-v"},
                   "-q and -v: give one or the other");
+  write("rays.csv", "0,0,-5,0,0,1\n");
+  expect_rejected({"trace", scene_, "-b", "reference", "--rays", path("rays.csv").string(), "-o",
+                   path("hits.csv").string(), "--threads", "0"},
+                  "--threads: must be at least 1, got 0");
 }
 
 // The bar, in a pseudo-terminal (script(1) runs prism on one): elapsed
