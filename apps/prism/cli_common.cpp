@@ -1,5 +1,6 @@
 #include "cli_common.hpp"
 
+#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -46,8 +47,8 @@ nlohmann::ordered_json plugin_overrides(const Scene& scene) {
 }
 }  // namespace
 
-StagedFile stage_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
-                       std::map<std::string, double> ms) {
+std::vector<std::pair<std::string, double>> phase_times(const BackendChoice& choice, const PhaseTimer& timer,
+                                                        std::map<std::string, double> ms) {
   const BackendStats stats = choice.backend->stats();
   // A GPU backend compiles its kernel inside its first render or trace call:
   // that time is `compile`, not `render`.
@@ -56,6 +57,27 @@ StagedFile stage_stats(const std::string& file, const BackendChoice& choice, con
     if (ms.count("render")) ms["render"] = std::max(0.0, ms["render"] - it->second);
   }
   ms["total"] = timer.total();
+  std::vector<std::pair<std::string, double>> times;
+  for (const char* phase : {"load", "build", "compile", "render", "total"}) {
+    auto it = ms.find(phase);
+    times.emplace_back(phase, it == ms.end() ? 0.0 : it->second);
+  }
+  return times;
+}
+
+std::string phase_times_line(const std::vector<std::pair<std::string, double>>& times) {
+  std::string line;
+  char part[64];
+  for (const auto& [phase, ms] : times) {
+    std::snprintf(part, sizeof part, "%s%s %.1f ms", line.empty() ? "" : ", ", phase.c_str(), ms);
+    line += part;
+  }
+  return line;
+}
+
+StagedFile stage_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
+                       std::map<std::string, double> ms) {
+  const BackendStats stats = choice.backend->stats();
   nlohmann::ordered_json j;
   j["backend"] = choice.name;
   j["plugins_loaded"] = scene.plugin_names();
@@ -66,12 +88,9 @@ StagedFile stage_stats(const std::string& file, const BackendChoice& choice, con
   if (!stats.counters.empty()) j["counters"] = stats.counters;
   if (!stats.info.empty()) j["info"] = stats.info;
   nlohmann::ordered_json times;
-  for (const char* phase : {"load", "build", "compile", "render", "total"}) {
-    auto it = ms.find(phase);
-    times[phase] = it == ms.end() ? 0.0 : it->second;
-  }
+  for (const auto& [phase, value] : phase_times(choice, timer, std::move(ms))) times[phase] = value;
   j["ms"] = times;
-  // Whether this run needed OpenImageIO (PNG, JPEG and EXR do not).
+  // Whether this run needed OpenImageIO (PNG, JPEG, EXR and HDR output do not).
   j["loaded_libraries"] = {{"openimageio", openimageio_loaded()}};
   return stage_text_file(file, j.dump(2) + "\n");
 }
@@ -83,6 +102,9 @@ void write_stats(const std::string& file, const BackendChoice& choice, const Sce
 
 namespace {
 volatile sig_atomic_t first_signal = 0;
+// Whether a progress bar is on the current line of stderr, for the deadline
+// handler's message (which must not call into stdio).
+volatile sig_atomic_t progress_line_open = 0;
 
 // Only async-signal-safe calls: an atomic store and alarm().
 void on_interrupt(int signal) {
@@ -95,6 +117,9 @@ void on_interrupt(int signal) {
 // signal asked, without unwinding anything (unlink and _exit are safe here).
 void on_deadline(int) {
   static const char message[] = "prism: interrupted, and the run did not stop within the grace period: ended at once, the output files were left as they were\n";
+  if (progress_line_open) {
+    [[maybe_unused]] const ssize_t ended = write(STDERR_FILENO, "\n", 1);
+  }
   [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, message, sizeof message - 1);
   remove_temporary_files();
   _exit(128 + (first_signal != 0 ? int(first_signal) : SIGTERM));
@@ -116,29 +141,83 @@ void stop_on_interrupt() {
   sigaction(SIGALRM, &deadline, nullptr);
 }
 
+void check_thread_count(const std::optional<int>& threads) {
+  if (threads && *threads < 1) throw InputError("--threads: must be at least 1, got " + std::to_string(*threads));
+}
+
+std::shared_ptr<void> limit_threads(const std::optional<int>& threads) {
+  check_thread_count(threads);
+  if (!threads) return nullptr;
+  return std::make_shared<tbb::global_control>(tbb::global_control::max_allowed_parallelism, size_t(*threads));
+}
+
+size_t thread_limit() { return tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism); }
+
+std::string format_duration(double ms) {
+  char text[32];
+  if (ms < 1000.0) std::snprintf(text, sizeof text, "%.0f ms", ms);
+  else std::snprintf(text, sizeof text, "%.1f s", ms / 1000.0);
+  return text;
+}
+
+std::string format_ray_rate(double rays_per_second) {
+  char text[32];
+  if (rays_per_second >= 1e6) std::snprintf(text, sizeof text, "%.1f Mrays/s", rays_per_second / 1e6);
+  else std::snprintf(text, sizeof text, "%.1f krays/s", rays_per_second / 1e3);
+  return text;
+}
+
 namespace {
 std::mutex progress_mutex;
-int progress_drawn = -1;
+int progress_drawn = -1;  // percent last drawn; -1: no bar on the line
+std::chrono::steady_clock::time_point progress_start, progress_redrawn;
+
+// What follows the percentage: times, ray rate, frame.
+std::string progress_details(double fraction, const ProgressLabel& label) {
+  const auto now = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double, std::milli>(now - progress_start).count();
+  std::string text = format_duration(elapsed);
+  if (fraction > 0.0 && fraction < 1.0) text += ", " + format_duration(elapsed * (1.0 - fraction) / fraction) + " left";
+  if (label.rays_per_second > 0.0) text += ", " + format_ray_rate(label.rays_per_second);
+  if (label.frames > 1) text += ", frame " + std::to_string(label.frame + 1) + "/" + std::to_string(label.frames);
+  return text;
+}
 }  // namespace
 
-std::function<void(double)> progress_bar() {
+std::function<void(double)> progress_bar(const ProgressLabel& label) {
   if (!::isatty(STDERR_FILENO)) return {};
-  progress_drawn = -1;
-  return [](double fraction) {
-    int percent = static_cast<int>(fraction * 100.0);
+  {
     std::lock_guard lock(progress_mutex);
-    if (percent <= progress_drawn) return;
+    progress_drawn = -1;
+    progress_start = progress_redrawn = std::chrono::steady_clock::now();
+  }
+  return [label](double fraction) {
+    const int percent = std::clamp(static_cast<int>(fraction * 100.0), 0, 100);
+    std::lock_guard lock(progress_mutex);
+    // Redrawn when the percentage moves on, or every quarter second for the
+    // clock; a thread's report older than what is shown is dropped.
+    const auto now = std::chrono::steady_clock::now();
+    if (percent < progress_drawn) return;
+    if (percent == progress_drawn && now - progress_redrawn < std::chrono::milliseconds(250)) return;
     progress_drawn = percent;
+    progress_line_open = 1;
+    progress_redrawn = now;
     constexpr int kWidth = 40;
-    int filled = percent * kWidth / 100;
-    std::fprintf(stderr, "\r[%.*s%*s] %3d%%", filled, "########################################", kWidth - filled, "",
-                 percent);
+    const int filled = percent * kWidth / 100;
+    // \033[K clears what a longer earlier line left on the right.
+    std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %s\033[K", filled, "########################################",
+                 kWidth - filled, "", percent, progress_details(fraction, label).c_str());
     std::fflush(stderr);
   };
 }
 
-void finish_progress_bar() {
-  if (::isatty(STDERR_FILENO) && progress_drawn >= 0) std::fprintf(stderr, "\n");
+void finish_progress_bar() { end_progress_line(); }
+
+void end_progress_line() {
+  std::lock_guard lock(progress_mutex);
+  if (progress_drawn >= 0) std::fprintf(stderr, "\n");
+  progress_drawn = -1;
+  progress_line_open = 0;
 }
 
 }  // namespace prism::cli

@@ -5,7 +5,10 @@
 #include <chrono>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "prism/backend.hpp"
 #include "prism/image_io.hpp"
@@ -44,6 +47,13 @@ class PhaseTimer {
   std::chrono::steady_clock::time_point start_, last_;
 };
 
+// The phase times --stats writes, in milliseconds, in its order: load,
+// build, compile (a GPU backend's kernel, taken out of render), render, total.
+std::vector<std::pair<std::string, double>> phase_times(const BackendChoice& choice, const PhaseTimer& timer,
+                                                        std::map<std::string, double> ms);
+// The same as one line for -v: "load 1.2 ms, build 0.3 ms, ...".
+std::string phase_times_line(const std::vector<std::pair<std::string, double>>& times);
+
 // Writes the --stats JSON (atomically): the phases timed in `ms`, the
 // backend's own compile time, and the total so far.
 void write_stats(const std::string& file, const BackendChoice& choice, const Scene& scene, const PhaseTimer& timer,
@@ -62,8 +72,32 @@ StagedFile stage_stats(const std::string& file, const BackendChoice& choice, con
 inline constexpr unsigned kStopGraceSeconds = 2;
 void stop_on_interrupt();
 
-// A progress bar on stderr, drawn only when stderr is a terminal.
-std::function<void(double)> progress_bar();
+// What the progress bar says beside the fraction done: the frame of a
+// sequence, and the ray rate when an earlier frame measured it.
+struct ProgressLabel {
+  int frame = 0, frames = 1;     // frame `frame` (0-based) of `frames`
+  double rays_per_second = 0;    // 0: not known yet
+};
+// A progress bar on stderr, drawn only when stderr is a terminal:
+// `[####    ]  69%  1.2 s, 0.5 s left, 7.0 Mrays/s, frame 2/24`.
+std::function<void(double)> progress_bar(const ProgressLabel& label = {});
+// The bar is complete: the next output starts on a line of its own.
 void finish_progress_bar();
+// Before a message while a bar may be half drawn (an error, an interrupt):
+// ends its line, so that the message is not glued to it.
+void end_progress_line();
+
+// --threads N: InputError unless N >= 1.
+void check_thread_count(const std::optional<int>& threads);
+// TBB's worker limit for the run (the CPU backends render and trace with
+// TBB in this process), held while the returned object lives; no limit when
+// `threads` is empty. Checks it first.
+std::shared_ptr<void> limit_threads(const std::optional<int>& threads);
+// The number of threads TBB may use now (-v says it).
+size_t thread_limit();
+
+// "1.7 s", "85 ms"; "7.0 Mrays/s", "350.2 krays/s".
+std::string format_duration(double ms);
+std::string format_ray_rate(double rays_per_second);
 
 }  // namespace prism::cli

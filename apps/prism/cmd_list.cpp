@@ -27,6 +27,39 @@ std::string override_note(const std::vector<PluginReport>& reports, const Plugin
   return note.empty() ? "" : note + "]";
 }
 
+// The report `-b auto` goes by for each backend name: the first file of the
+// search path that loaded (a later one of the same name is hidden by it).
+std::vector<const PluginReport*> backends_in_effect(const std::vector<PluginReport>& reports) {
+  std::vector<const PluginReport*> in_effect;
+  for (const PluginReport& report : reports) {
+    if (report.kind != "backend" || !report.error.empty()) continue;
+    bool hidden = false;
+    for (const PluginReport* earlier : in_effect) hidden = hidden || earlier->name == report.name;
+    if (!hidden) in_effect.push_back(&report);
+  }
+  return in_effect;
+}
+
+// Which backend `-b auto` picks here and why: the usable one with the
+// highest speed rank; the faster ones passed over, with their reasons.
+void print_auto_choice(const std::vector<PluginReport>& reports) {
+  const PluginReport* chosen = nullptr;
+  for (const PluginReport* report : backends_in_effect(reports))
+    if (report->usable && (!chosen || report->speed_rank > chosen->speed_rank)) chosen = report;
+  if (!chosen) {
+    std::printf("-b auto: no backend can run here (see above why)\n");
+    return;
+  }
+  std::printf("-b auto picks %s here: the usable backend with the highest speed rank (%d)", chosen->name.c_str(),
+              chosen->speed_rank);
+  std::string passed_over;
+  for (const PluginReport* report : backends_in_effect(reports))
+    if (!report->usable && report->speed_rank > chosen->speed_rank)
+      passed_over += (passed_over.empty() ? "" : ", ") + report->name + " (rank " + std::to_string(report->speed_rank) + ")";
+  if (!passed_over.empty()) std::printf("; faster but not usable here: %s", passed_over.c_str());
+  std::printf("\n");
+}
+
 int run_list() {
   Registry registry;
   std::printf("plugin search path:\n");
@@ -49,6 +82,7 @@ int run_list() {
     std::printf("  %-10s  %-8s %s (%s)%s\n", report.name.c_str(), report.version.c_str(), status.c_str(),
                 report.path.c_str(), note.c_str());
   }
+  print_auto_choice(reports);
   return 0;
 }
 

@@ -1,4 +1,4 @@
-// prism trace SCENE -b BACKEND --rays IN.csv -o OUT.csv [--digits N] [--stats F.json]
+// prism trace SCENE [-b BACKEND] --rays IN.csv -o OUT.csv [--digits N] [--stats F.json] [--threads N] [-v]
 // One line per ray in: ox,oy,oz,dx,dy,dz[,tmin]; one line per ray out:
 // t,object,nx,ny,nz of the closest hit with t > tmin (a miss: inf,-1,0,0,0).
 #include <cstdio>
@@ -18,6 +18,8 @@ namespace {
 struct TraceArgs {
   std::string scene, backend = "auto", rays, output, stats;
   int digits = 9;
+  std::optional<int> threads;
+  bool verbose = false;
 };
 
 std::string format_results(const std::vector<TraceResult>& results, int digits) {
@@ -38,6 +40,7 @@ std::string format_results(const std::vector<TraceResult>& results, int digits) 
 int run_trace(const TraceArgs& args) {
   check_output_path(args.output, {".csv"});
   if (!args.stats.empty()) check_output_path(args.stats, {".json"});
+  const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;
   Registry registry;
@@ -55,6 +58,7 @@ int run_trace(const TraceArgs& args) {
   if (!args.stats.empty()) stats.emplace(stage_stats(args.stats, choice, scene, timer, ms));
   output.commit();
   if (stats) stats->commit();
+  if (args.verbose) std::fprintf(stderr, "phases: %s\n", phase_times_line(phase_times(choice, timer, ms)).c_str());
   return 0;
 }
 
@@ -64,11 +68,14 @@ Command add_trace_command(CLI::App& app) {
   auto args = std::make_shared<TraceArgs>();
   CLI::App* sub = app.add_subcommand("trace", "Closest hits of a batch of rays (CSV in, CSV out)");
   sub->add_option("scene", args->scene, "Scene file (JSON)")->required();
-  sub->add_option("-b,--backend", args->backend, "Backend name, or auto");
+  sub->add_option("-b,--backend", args->backend,
+                  "Backend name, or auto: the fastest usable here (default auto; `prism list` says which)");
   sub->add_option("--rays", args->rays, "Rays: ox,oy,oz,dx,dy,dz[,tmin] per line")->required();
   sub->add_option("-o,--output", args->output, "Output CSV: t,object,nx,ny,nz per ray")->required();
-  sub->add_option("--digits", args->digits, "Significant digits (1..17)")->check(CLI::Range(1, 17));
+  sub->add_option("--digits", args->digits, "Significant digits, 1 to 17 (default 9)")->check(CLI::Range(1, 17));
   sub->add_option("--stats", args->stats, "Write run statistics to this JSON file");
+  sub->add_option("--threads", args->threads, "Threads of the CPU backends, at least 1 (default: one per core)");
+  sub->add_flag("-v,--verbose", args->verbose, "Print the phase times --stats writes");
   return [args] { return run_trace(*args); };
 }
 

@@ -16,5 +16,9 @@ Command add_view_command(CLI::App& app);
 Command add_conform_command(CLI::App& app);
 Command add_bench_command(CLI::App& app);
 Command add_plugin_command(CLI::App& app);
+Command add_version_command(CLI::App& app);
+
+// `prism version` and `prism --version`.
+int run_version();
 
 }  // namespace prism::cli

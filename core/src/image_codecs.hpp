@@ -64,6 +64,12 @@ void read_exr(const std::filesystem::path& file, int max_channels, const RowSink
 // fastest zlib level. EXR: Half or Float, zip compression, the image's channel names.
 void write_png(int fd, const ImageFile& image, PixelFormat storage);
 void write_exr(int fd, const ImageFile& image, PixelFormat storage);
+// JPEG (1 or 3 channels): the values' 8-bit codes, as PNG stores them, at
+// libjpeg's `quality` (1 to 100).
+void write_jpeg(int fd, const ImageFile& image, int quality);
+// Radiance RGBE (.hdr) of the first three channels, linear values, scanlines
+// uncompressed (a reader tells them from run-length ones).
+void write_hdr(int fd, const ImageFile& image);
 
 // Writes all of `size` bytes to `fd`, retrying short writes: 0, or the errno
 // of the failure. Inline: libprism_exr.so uses it too.

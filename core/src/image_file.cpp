@@ -148,6 +148,10 @@ void write_image_file(const std::filesystem::path& file, const ImageFile& image,
   });
 }
 
+std::string write_with_openimageio(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage) {
+  return image_module().write(file, image, storage);
+}
+
 bool openimageio_loaded() {
   std::ifstream maps("/proc/self/maps");
   std::string line;

@@ -11,6 +11,7 @@
 #include <cstring>
 
 #include "image_codecs.hpp"
+#include "image_module.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
@@ -88,6 +89,9 @@ void probe_temporary(const fs::path& file) {
   ::close(fd);
   ::unlink(tmp.c_str());
 }
+
+// libjpeg's scale: 95 keeps a rendering's edges and gradients visibly intact.
+constexpr int kJpegQuality = 95;
 
 ImageFile png_pixels(const Image& image) {
   ImageFile file{image.width, image.height, 3, {}, PixelFormat::UInt8, {}};
@@ -218,13 +222,35 @@ void write_file_atomically(const fs::path& file, const std::function<void(const 
   StagedFile(file, write).commit();
 }
 
+const std::vector<std::string>& image_output_extensions() {
+  static const std::vector<std::string> extensions = {".png", ".exr", ".jpg", ".jpeg", ".tif", ".tiff", ".hdr"};
+  return extensions;
+}
+
 StagedFile stage_image(const Image& image, const fs::path& file) {
   const std::string ext = lower_extension(file);
-  if (ext != ".png" && ext != ".exr") throw InputError(file.string() + ": unsupported output type '" + ext + "'");
-  return StagedFile(file, [&](const fs::path&, int fd) {
-    if (ext == ".png") codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
-    else codec::write_exr(fd, exr_pixels(image), PixelFormat::Float);
+  const auto& known = image_output_extensions();
+  if (std::find(known.begin(), known.end(), ext) == known.end())
+    throw InputError(file.string() + ": unsupported output type '" + ext + "'");
+  return StagedFile(file, [&](const fs::path& temporary, int fd) {
+    if (ext == ".png") return codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
+    if (ext == ".exr") return codec::write_exr(fd, exr_pixels(image), PixelFormat::Float);
+    if (ext == ".jpg" || ext == ".jpeg") return codec::write_jpeg(fd, png_pixels(image), kJpegQuality);
+    if (ext == ".hdr") return codec::write_hdr(fd, exr_pixels(image));
+    // TIFF through OpenImageIO (libtiff reports failed writes), which writes
+    // the temporary by its name: it keeps the extension, so OpenImageIO
+    // picks the format. The error names the file asked for.
+    const std::string error = write_with_openimageio(temporary, png_pixels(image), PixelFormat::UInt8);
+    if (!error.empty()) throw RuntimeError("cannot write " + file.string() + ": " + error);
   });
+}
+
+void write_png_to(const Image& image, int fd, const std::string& name) {
+  try {
+    codec::write_png(fd, png_pixels(image), PixelFormat::UInt8);
+  } catch (const codec::CodecError& e) {
+    throw RuntimeError("cannot write " + name + ": " + e.what());
+  }
 }
 
 void write_image(const Image& image, const fs::path& file) { stage_image(image, file).commit(); }

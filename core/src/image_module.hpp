@@ -19,6 +19,10 @@ struct ImageModule {
   ImageComparison (*compare)(const ImageFile& a, const ImageFile& b, float threshold);
 };
 
+// Writes `image` to `file` (by name; the extension picks the format) with
+// OpenImageIO, loading libprism_oiio.so the first time: "" or the reason.
+std::string write_with_openimageio(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
+
 }  // namespace prism
 
 extern "C" {

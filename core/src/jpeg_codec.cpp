@@ -1,4 +1,5 @@
-// JPEG textures through libjpeg-turbo. Its errors and warnings come back by
+// JPEG textures and `prism render -o x.jpg` through libjpeg-turbo. Its
+// errors and warnings come back by
 // longjmp to the function that called into it; as OpenImageIO does, a
 // warning (corrupt data, a premature end of file) fails the read, and
 // nothing is printed on stderr.
@@ -9,7 +10,9 @@
 #include <jpeglib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <csetjmp>
+#include <cstdlib>
 #include <cstring>
 #include <vector>
 
@@ -132,7 +135,56 @@ class JpegReader {
   ImageFile header_;
 };
 
+// Compresses 8-bit `codes` (width * height * channels, 1 or 3 channels) into
+// `*out` (malloc'ed by libjpeg; the caller frees it, also on failure).
+// false with `errors.message` set when libjpeg fails. Only trivial locals
+// live across setjmp.
+bool compress_jpeg(const ImageFile& image, const unsigned char* codes, int quality, unsigned char** out,
+                   unsigned long* size, JpegErrors& errors) {
+  jpeg_compress_struct info{};
+  info.err = jpeg_std_error(&errors.manager);
+  errors.manager.error_exit = on_jpeg_error;
+  errors.manager.emit_message = on_jpeg_message;
+  if (setjmp(errors.jump)) {
+    jpeg_destroy_compress(&info);
+    return false;
+  }
+  jpeg_create_compress(&info);
+  jpeg_mem_dest(&info, out, size);
+  info.image_width = JDIMENSION(image.width);
+  info.image_height = JDIMENSION(image.height);
+  info.input_components = image.channels;
+  info.in_color_space = image.channels == 1 ? JCS_GRAYSCALE : JCS_RGB;
+  jpeg_set_defaults(&info);
+  jpeg_set_quality(&info, quality, TRUE);
+  jpeg_start_compress(&info, TRUE);
+  const size_t row = size_t(image.width) * size_t(image.channels);
+  while (info.next_scanline < info.image_height) {
+    JSAMPROW rows[1] = {const_cast<JSAMPLE*>(codes + size_t(info.next_scanline) * row)};
+    jpeg_write_scanlines(&info, rows, 1);
+  }
+  jpeg_finish_compress(&info);
+  jpeg_destroy_compress(&info);
+  return true;
+}
+
 }  // namespace
+
+void write_jpeg(int fd, const ImageFile& image, int quality) {
+  if (image.channels != 1 && image.channels != 3) throw CodecError("JPEG takes 1 or 3 channels, not " + std::to_string(image.channels));
+  std::vector<unsigned char> codes(image.pixels.size());
+  for (size_t i = 0; i < codes.size(); ++i)
+    codes[i] = static_cast<unsigned char>(std::lround(std::clamp(image.pixels[i], 0.0f, 1.0f) * 255.0f));
+  unsigned char* compressed = nullptr;
+  unsigned long size = 0;
+  JpegErrors errors{};
+  const bool done = compress_jpeg(image, codes.data(), quality, &compressed, &size, errors);
+  // Written in one piece once compressed, so every write is checked here.
+  const int error = done ? write_fully(fd, compressed, size) : 0;
+  std::free(compressed);
+  if (!done) throw CodecError(errors.message);
+  if (error) throw CodecError(std::strerror(error));
+}
 
 ImageFile read_jpeg_header(const std::filesystem::path& file) {
   JpegReader reader;

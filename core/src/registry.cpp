@@ -356,6 +356,7 @@ std::vector<PluginReport> Registry::scan_all() {
     reports[i].version = probe.version;
     reports[i].usable = probe.usable;
     reports[i].detail = probe.detail;
+    reports[i].speed_rank = probe.speed_rank;
   }
   return reports;
 }

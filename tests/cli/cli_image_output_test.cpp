@@ -51,8 +51,8 @@ TEST_F(ImageOutput, ATextureOnlyOpenImageIOReadsLoadsIt) {
 
 // libpng prints its warnings and errors on stderr unless a handler takes
 // them: a texture with a damaged ancillary chunk (a warning, the chunk is
-// dropped) renders with nothing on stderr, and a cut one fails with Prism's
-// one-line message only.
+// dropped) renders with nothing on stderr (-q: not even Prism's summary
+// line), and a cut one fails with Prism's one-line message only.
 TEST_F(ImageOutput, LibpngPrintsNothingOfItsOwn) {
   write_image_file(path("tex.png"), ImageFile{2, 2, 3, {}, PixelFormat::UInt8, std::vector<float>(12, 0.5f)},
                    PixelFormat::UInt8);
@@ -67,7 +67,7 @@ TEST_F(ImageOutput, LibpngPrintsNothingOfItsOwn) {
     text.extra = std::string(R"("textures": {"t": ")") + texture + R"("}, "materials": {"m": {"texture": "t"}})";
     text.objects = R"([{"type": "sphere", "radius": 1, "material": "m"}])";
     scene_ = write("textured.json", text.text()).string();
-    const RunResult r = render(path("out.png"));
+    const RunResult r = render(path("out.png"), {"-q"});
     if (std::string(texture) == "damaged.png") {
       EXPECT_TRUE(ExitedWith(r, 0));
       EXPECT_EQ(r.err, "");
@@ -108,6 +108,25 @@ TEST_F(FullDiskOutput, AnImageIsNotReplaced) {
     const RunResult r = render(out, {"--width", "32", "--height", "24"});
     EXPECT_TRUE(ExitedWith(r, 1));
     EXPECT_TRUE(StderrHas(r, {"cannot write " + out.string() + ": No space left on device"}));
+    EXPECT_EQ(read_file(out), before);
+    EXPECT_EQ(leftovers(), std::vector<std::string>{name});
+    fs::remove(disk_ / "filler");
+    fs::remove(out);
+  }
+}
+
+// The formats OpenImageIO writes are staged the same way: its failure on a
+// full disk is exit status 1 naming the file, and the older one stays.
+TEST_F(FullDiskOutput, AnImageOpenImageIOWritesIsNotReplaced) {
+  for (const char* name : {"out.tif", "out.jpg", "out.hdr"}) {
+    SCOPED_TRACE(name);
+    const fs::path out = disk_ / name;
+    ASSERT_TRUE(ExitedWith(render(out, {"--width", "16", "--height", "12"}), 0));
+    const std::string before = read_file(out);
+    fill();
+    const RunResult r = render(out, {"--width", "32", "--height", "24"});
+    EXPECT_TRUE(ExitedWith(r, 1));
+    EXPECT_TRUE(StderrHas(r, {"prism: error: cannot write " + out.string() + ": "}));
     EXPECT_EQ(read_file(out), before);
     EXPECT_EQ(leftovers(), std::vector<std::string>{name});
     fs::remove(disk_ / "filler");

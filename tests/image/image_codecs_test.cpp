@@ -1,4 +1,4 @@
-// Prism's PNG, JPEG and EXR readers and writers give what OpenImageIO gives:
+// Prism's PNG, JPEG and EXR readers and writers (and its Radiance HDR writer) give what OpenImageIO gives:
 // files Prism writes read back through OpenImageIO with the expected pixels,
 // names and types, and files of every PNG layout (and JPEG, EXR) read by
 // Prism equal OpenImageIO's reading of them, value for value.
@@ -147,6 +147,45 @@ TEST_F(ImageCodecs, RenderedExrReadsBackThroughOpenImageIO) {
   EXPECT_EQ(read.format, OIIO::TypeDesc::FLOAT);
   for (const OIIO::TypeDesc& t : read.channel_formats) EXPECT_EQ(t, OIIO::TypeDesc::FLOAT);
   EXPECT_EQ(read.pixels, (std::vector<float>{0.25f, -1.5f, 1e6f, 7, 123456, 3.0f, 0.125f, 0.0f, -1, 0}));
+}
+
+// RGBE by hand: (1, 0.5, 0.25) has the largest 1 = 0.5 * 2^1, mantissas
+// 256 * 0.5 * (1, 0.5, 0.25) = 128, 64, 32 and exponent 1 + 128; (3, -1,
+// 0.75): 3 = 0.75 * 2^2, scale 256 * 0.75 / 3 = 64, so 192, 0 (negative), 48
+// and 130. Read back, mantissa * 2^(e - 136) gives the values exactly.
+TEST_F(ImageCodecs, RenderedHdrIsRgbeAndReadsBackThroughOpenImageIO) {
+  Image image;
+  image.width = 3;
+  image.height = 1;
+  image.rgb = {1.0f, 0.5f, 0.25f, 0, 0, 0, 3.0f, -1.0f, 0.75f};
+  const fs::path file = dir_ / "out.hdr";
+  write_image(image, file);
+  const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 3\n";
+  const std::string pixels = {char(128), 64, 32, char(129), 0, 0, 0, 0, char(192), 0, 48, char(130)};
+  EXPECT_EQ(test::read_file(file), header + pixels);
+  const OiioImage read = read_with_oiio(file);
+  EXPECT_EQ(read.width, 3);
+  EXPECT_EQ(read.height, 1);
+  EXPECT_EQ(read.pixels, (std::vector<float>{1.0f, 0.5f, 0.25f, 0, 0, 0, 3.0f, 0, 0.75f}));
+}
+
+// A flat grey block survives JPEG exactly: 0.5 is sRGB code 188, luma 188
+// (libjpeg's RGB weights sum to exactly 1 in its fixed point), chroma 128,
+// and the DC coefficient 8 * (188 - 128) = 480 is a multiple of the
+// quality-95 step (16 * 10 / 100, rounded: 2), so decoding gives 188 back.
+TEST_F(ImageCodecs, RenderedJpegReadsBackThroughOpenImageIO) {
+  Image image;
+  image.width = 8;
+  image.height = 8;
+  image.rgb.assign(8 * 8 * 3, 0.5f);
+  const fs::path file = dir_ / "out.jpg";
+  write_image(image, file);
+  const OiioImage read = read_with_oiio(file);
+  EXPECT_EQ(read.width, 8);
+  EXPECT_EQ(read.height, 8);
+  EXPECT_EQ(read.channels, 3);
+  EXPECT_EQ(read.format, OIIO::TypeDesc::UINT8);
+  for (size_t i = 0; i < read.pixels.size(); ++i) EXPECT_EQ(std::lround(read.pixels[i] * 255.0f), 188) << i;
 }
 
 // 16-bit output (tests write their fixtures this way): code round(65535 * v).

@@ -42,10 +42,21 @@ class StagedFile {
 };
 
 // .png: 8-bit sRGB of the clamped values; .exr: linear float RGB plus the
-// `id` / `path` channels the image carries. Throws InputError for an
-// unsupported extension and RuntimeError when the file cannot be written.
+// `id` / `path` channels the image carries; .jpg/.jpeg (quality 95) and
+// .tif/.tiff: the same 8-bit codes as PNG; .hdr: linear RGB as Radiance
+// RGBE. All through Prism's own writers but TIFF, which goes through
+// OpenImageIO (loaded then). Throws InputError for an unsupported extension
+// and RuntimeError when the file cannot be written.
 void write_image(const Image& image, const std::filesystem::path& file);
 StagedFile stage_image(const Image& image, const std::filesystem::path& file);
+
+// The extensions write_image takes (lower case; any case is accepted).
+const std::vector<std::string>& image_output_extensions();
+
+// Writes `image` as the PNG write_image would to the open file descriptor
+// `fd` (not closed): `prism render -o -` to standard output. RuntimeError
+// naming `name` when a write fails.
+void write_png_to(const Image& image, int fd, const std::string& name);
 
 // Checked before rendering starts: InputError unless `file` has one of
 // `extensions`; RuntimeError unless its folder exists and is writable.

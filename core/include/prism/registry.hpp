@@ -98,6 +98,7 @@ struct PluginReport {
   std::string error;    // empty when it loaded
   bool usable = false;  // backends: the probe says it can run here
   std::string detail;   // backends: the probe's description or reason
+  int speed_rank = 0;   // backends: the descriptor's, when loaded (`-b auto` picks the highest usable)
 };
 
 class Registry {
