@@ -1,3 +1,8 @@
+// prism plugin fields [TYPE...] [--markdown]
+// Prints the JSON fields of the named primitive plugins (default: every one
+// found), from their own field tables; --markdown prints the table of
+// docs/scene-format.md (plugin_fields.hpp).
+//
 // prism plugin check FILE.so [--object JSON] [--rays N] [-b BACKENDS]
 // Loads one primitive plugin file, prints its descriptor (type, version,
 // ABI version, fields, GLSL, refine), checks its packet entries against
@@ -20,6 +25,7 @@
 
 #include "cli_common.hpp"
 #include "commands.hpp"
+#include "plugin_fields.hpp"
 #include "plugin_packets.hpp"
 #include "prism/errors.hpp"
 #include "prism/scene_loader.hpp"
@@ -266,6 +272,29 @@ int run_plugin_check(const PluginCheckArgs& args) {
   return all_pass ? 0 : 1;
 }
 
+struct PluginFieldsArgs {
+  std::vector<std::string> types;
+  bool markdown = false;
+};
+
+int run_plugin_fields(const PluginFieldsArgs& args) {
+  Registry registry;
+  const std::vector<std::string> types = args.types.empty() ? registry.primitive_types_found() : args.types;
+  std::vector<std::shared_ptr<const PrimitivePlugin>> plugins;
+  for (const std::string& type : types) plugins.push_back(registry.primitive(type));  // InputError when unusable
+  if (args.markdown) {
+    std::vector<const PrismPrimitiveDesc*> descs;
+    for (const auto& plugin : plugins) descs.push_back(&plugin->desc());
+    std::fputs(fields_markdown(descs).c_str(), stdout);
+    return 0;
+  }
+  for (const auto& plugin : plugins) {
+    std::printf("%s %s (%s)\n", plugin->name().c_str(), plugin->desc().plugin_version, plugin->path().c_str());
+    std::fputs(fields_text(plugin->desc()).c_str(), stdout);
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command add_plugin_command(CLI::App& app) {
@@ -279,7 +308,14 @@ Command add_plugin_command(CLI::App& app) {
   check->add_option("--rays", args->rays, "Random rays to trace (default 2000)");
   check->add_option("-b,--backend", args->backends, "Backends to compare with the reference (default: all found)")
       ->delimiter(',');
-  return [args] { return run_plugin_check(*args); };
+  auto fields_args = std::make_shared<PluginFieldsArgs>();
+  CLI::App* fields =
+      plugin->add_subcommand("fields", "Print the JSON fields of primitive plugins, from their field tables");
+  fields->add_option("type", fields_args->types, "Primitive types (default: every plugin found)");
+  fields->add_flag("--markdown", fields_args->markdown, "The table of docs/scene-format.md, in Markdown");
+  return [args, fields_args, check] {
+    return check->parsed() ? run_plugin_check(*args) : run_plugin_fields(*fields_args);
+  };
 }
 
 }  // namespace prism::cli

@@ -299,56 +299,6 @@ ObjectId LiveScene::add_object(const std::string& type, const Params& params, co
   return state_->append_object(std::move(fragment), path);
 }
 
-namespace {
-
-// The typed helpers name their own call in messages.
-Json typed_object(const char* type, std::initializer_list<std::pair<const char*, Json>> fields,
-                  const std::string& material, const std::optional<Rotation>& rotation) {
-  Json fragment = {{"type", type}};
-  for (const auto& [key, value] : fields) fragment[key] = value;
-  if (!material.empty()) fragment["material"] = material;
-  if (rotation) fragment["rotation"] = rotation_json(*rotation);
-  return fragment;
-}
-
-}  // namespace
-
-ObjectId LiveScene::add_sphere(const glm::dvec3& center, double radius, const std::string& material) {
-  return state_->append_object(typed_object("sphere", {{"center", vec_json(center)}, {"radius", radius}}, material, {}),
-                               call("add_sphere"));
-}
-
-ObjectId LiveScene::add_plane(const glm::dvec3& point, const glm::dvec3& normal, const std::string& material) {
-  return state_->append_object(
-      typed_object("plane", {{"point", vec_json(point)}, {"normal", vec_json(normal)}}, material, {}),
-      call("add_plane"));
-}
-
-ObjectId LiveScene::add_box(const glm::dvec3& center, const glm::dvec3& half_size, const std::string& material,
-                            const std::optional<Rotation>& rotation) {
-  return state_->append_object(
-      typed_object("box", {{"center", vec_json(center)}, {"half_size", vec_json(half_size)}}, material, rotation),
-      call("add_box"));
-}
-
-ObjectId LiveScene::add_torus(const glm::dvec3& center, double major_radius, double minor_radius,
-                              const std::string& material, const std::optional<Rotation>& rotation) {
-  return state_->append_object(
-      typed_object("torus",
-                   {{"center", vec_json(center)}, {"major_radius", major_radius}, {"minor_radius", minor_radius}},
-                   material, rotation),
-      call("add_torus"));
-}
-
-ObjectId LiveScene::add_ring(const glm::dvec3& center, double inner_radius, double outer_radius,
-                             const std::string& material, const std::optional<Rotation>& rotation) {
-  return state_->append_object(
-      typed_object("ring",
-                   {{"center", vec_json(center)}, {"inner_radius", inner_radius}, {"outer_radius", outer_radius}},
-                   material, rotation),
-      call("add_ring"));
-}
-
 void LiveScene::update_object(ObjectId id, const Params& params) {
   const std::string path = object_call("update_object", id);
   const size_t index = state_->index_of(id, path);

@@ -83,18 +83,20 @@ prism::LightId add_lights(prism::LiveScene& scene) {
 Showcase add_objects(prism::LiveScene& scene) {
   Showcase s;
   const Rotation planet_tilt{.axis = kPlanetTiltAxis, .degrees = kPlanetTiltDegrees};
-  scene.add_plane({0, 0, 0}, {0, 1, 0}, "floor");
-  s.glass = scene.add_sphere(kGlassStart, 1.0, "glass");
-  s.mirror = scene.add_sphere(kMirrorStart, 1.0, "mirror");
-  // add_sphere takes no rotation; the planet needs one for its texture.
+  scene.add_object("plane", {{"point", dvec3{0, 0, 0}}, {"normal", dvec3{0, 1, 0}}}, "floor");
+  s.glass = scene.add_object("sphere", {{"center", kGlassStart}, {"radius", 1.0}}, "glass");
+  s.mirror = scene.add_object("sphere", {{"center", kMirrorStart}, {"radius", 1.0}}, "mirror");
+  // The planet is turned so that its texture and its rings tilt together.
   s.planet = scene.add_object("sphere", {{"center", kPlanetCenter}, {"radius", 0.8}}, "planet", planet_tilt);
-  scene.add_ring(kPlanetCenter, 1.0, 1.5, "rings", planet_tilt);
-  scene.add_box({-3.3, 0.6, 2.6}, {0.6, 0.6, 0.6}, "marble", Rotation{.axis = {0, 1, 0}, .degrees = 30});
+  scene.add_object("ring", {{"center", kPlanetCenter}, {"inner_radius", 1.0}, {"outer_radius", 1.5}}, "rings",
+                   planet_tilt);
+  scene.add_object("box", {{"center", dvec3{-3.3, 0.6, 2.6}}, {"half_size", dvec3{0.6, 0.6, 0.6}}}, "marble",
+                   Rotation{.axis = {0, 1, 0}, .degrees = 30});
   scene.add_object("cone", {{"center", dvec3{4.4, 1.6, -1.8}}, {"radius", 0.6}, {"height", 1.6}}, "copper",
                    Rotation{.axis = {1, 0, 0}, .degrees = 180});
   scene.add_object("cylinder", {{"center", dvec3{3.1, 0.0, 2.9}}, {"radius", 0.45}, {"height", 1.1}}, "teal");
-  s.torus = scene.add_torus(kTorusCenter, 0.65, 0.22, "plum",
-                            Rotation{.axis = kTorusTiltAxis, .degrees = kTorusTiltDegrees});
+  s.torus = scene.add_object("torus", {{"center", kTorusCenter}, {"major_radius", 0.65}, {"minor_radius", 0.22}},
+                             "plum", Rotation{.axis = kTorusTiltAxis, .degrees = kTorusTiltDegrees});
   return s;
 }
 

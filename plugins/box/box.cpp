@@ -32,7 +32,7 @@ struct BoxRecord {
 static_assert(sizeof(BoxRecord) % 16 == 0);
 static_assert(glsl_define(kPluginGlsl, "BOX_HALF") == offsetof(BoxRecord, half) / sizeof(double));
 
-const PrismField kFields[] = {positive_length("half_size", 3, "half extents along local x, y, z")};
+const PrismField kFields[] = {positive_length("half_size", 3, "half of the size along local x, y and z; the box is centred on the local origin")};
 
 void pack(const double* values, void* record) {
   auto* rec = static_cast<BoxRecord*>(record);

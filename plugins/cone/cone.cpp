@@ -21,8 +21,8 @@ using namespace prism::sdk;
 static_assert(quadric_module_matches_records(kQuadricModuleGlsl));
 
 const PrismField kFields[] = {
-    positive_length("radius", 1, "radius of the open end at y = height"),
-    positive_length("height", 1, "apex at y = 0, open end at y = height"),
+    positive_length("radius", 1, "radius of the open end, at y = height"),
+    positive_length("height", 1, "the apex is at the local origin, the open end at y = height"),
 };
 
 void pack(const double* values, void* record) {

@@ -23,8 +23,8 @@ using namespace prism::sdk;
 static_assert(quadric_module_matches_records(kQuadricModuleGlsl));
 
 const PrismField kFields[] = {
-    positive_length("radius", 1, "radius of the tube"),
-    positive_length("height", 1, "the tube spans 0 <= y <= height"),
+    positive_length("radius", 1, "radius of the open tube around the local y axis"),
+    positive_length("height", 1, "length of the tube, which spans 0 <= y <= height"),
 };
 
 void pack(const double* values, void* record) {

@@ -44,11 +44,11 @@ const double kDefaultUvScale[] = {1.0};
 
 const PrismField kFields[] = {
     {"point", PRISM_FIELD_ARRAY, 3, PRISM_FIELD_REQUIRED | PRISM_FIELD_LENGTH, -kInf, kInf, 0.0, nullptr,
-     "a point on the plane"},
+     "a point on the plane, in world coordinates"},
     {"normal", PRISM_FIELD_ARRAY, 3, PRISM_FIELD_REQUIRED | PRISM_FIELD_NONZERO, -kInf, kInf, 0.0, nullptr,
-     "normal of the plane (any length, not all zero)"},
+     "normal of the plane, any length; it also sets the uv axes"},
     {"uv_scale", PRISM_FIELD_NUMBER, 1, PRISM_FIELD_MIN_EXCLUSIVE, 0.0, kInf, 0.0, kDefaultUvScale,
-     "world units to uv: u = dot(P - point, t1) * uv_scale"},
+     "texture coordinates per world unit along the plane"},
 };
 
 void pack(const double* values, void* record) {

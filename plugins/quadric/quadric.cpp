@@ -42,11 +42,11 @@ const double kNoMax[] = {kInf, kInf, kInf};
 
 const PrismField kFields[] = {
     {"coefficients", PRISM_FIELD_ARRAY, 10, PRISM_FIELD_REQUIRED, -kInf, kInf, 0.0, nullptr,
-     "[A,B,C,D,E,F,G,H,I,J] of Ax^2+By^2+Cz^2+Dxy+Eyz+Fxz+Gx+Hy+Iz+J = 0"},
+     "[A..J] of Ax^2 + By^2 + Cz^2 + Dxy + Eyz + Fxz + Gx + Hy + Iz + J = 0; A..I not all 0"},
     {"clip_min", PRISM_FIELD_ARRAY_OR_NULL, 3, PRISM_FIELD_LENGTH, -kInf, kInf, -kInf, kNoMin,
-     "lower corner of the clip box; null = unbounded"},
+     "lower corner of the local-frame box the surface is clipped to; null: no limit"},
     {"clip_max", PRISM_FIELD_ARRAY_OR_NULL, 3, PRISM_FIELD_LENGTH, -kInf, kInf, kInf, kNoMax,
-     "upper corner of the clip box; null = unbounded"},
+     "upper corner of that box, each entry >= clip_min's; null: no limit"},
 };
 
 int validate(const double* values, PrismError* err) {

@@ -35,8 +35,8 @@ const double kDefaultInner[] = {0.0};
 
 const PrismField kFields[] = {
     {"inner_radius", PRISM_FIELD_NUMBER, 1, PRISM_FIELD_LENGTH, 0.0, kInf, 0.0, kDefaultInner,
-     "radius of the hole (0: a full disk)"},
-    positive_length("outer_radius", 1, "outer radius, > inner_radius"),
+     "radius of the hole; 0 makes a full disc"},
+    positive_length("outer_radius", 1, "radius of the outer edge; must be > inner_radius"),
 };
 
 int validate(const double* values, PrismError* err) {

@@ -30,7 +30,7 @@ struct SphereRecord {
 static_assert(sizeof(SphereRecord) % 16 == 0);
 static_assert(glsl_define(kPluginGlsl, "SPHERE_RADIUS") == offsetof(SphereRecord, radius) / sizeof(double));
 
-const PrismField kFields[] = {positive_length("radius", 1, "radius of the sphere")};
+const PrismField kFields[] = {positive_length("radius", 1, "radius of the sphere, centred on the local origin")};
 
 void pack(const double* values, void* record) {
   auto* rec = static_cast<SphereRecord*>(record);

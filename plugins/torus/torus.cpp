@@ -52,8 +52,8 @@ static_assert(glsl_define(kPluginGlsl, "TORUS_MAJOR") == offsetof(TorusRecord, m
 static_assert(glsl_define(kPluginGlsl, "TORUS_MINOR") == offsetof(TorusRecord, minor) / sizeof(double));
 
 const PrismField kFields[] = {
-    positive_length("major_radius", 1, "distance from the axis to the tube's centre circle (R)"),
-    positive_length("minor_radius", 1, "radius of the tube (r), 0 < r < R"),
+    positive_length("major_radius", 1, "R: distance from the local y axis to the centre circle of the tube"),
+    positive_length("minor_radius", 1, "r: radius of the tube; must be < major_radius"),
 };
 
 int validate(const double* values, PrismError* err) {

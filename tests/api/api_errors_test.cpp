@@ -49,8 +49,8 @@ struct ErrorCase {
 };
 
 const ErrorCase kCases[] = {
-    {"NegativeRadius", [](LiveScene& s) { s.add_sphere({0, 0, 0}, -1); },
-     "add_sphere().radius: must be > 0, got -1",
+    {"NegativeRadius", [](LiveScene& s) { s.add_object("sphere", {{"radius", -1}}); },
+     "add_object(\"sphere\").radius: must be > 0, got -1",
      R"("objects": [{"type": "sphere", "radius": -1}])", "t.json: objects[0].radius: must be > 0, got -1"},
     {"GenericObjectField", [](LiveScene& s) { s.add_object("torus", {{"major_radius", 1}, {"minor_radius", 0}}); },
      "add_object(\"torus\").minor_radius: must be > 0, got 0",
@@ -60,8 +60,8 @@ const ErrorCase kCases[] = {
      "add_object(\"sphere\").raduis: unknown key (did you mean 'radius'?)",
      R"("objects": [{"type": "sphere", "raduis": 1}])",
      "t.json: objects[0].raduis: unknown key (did you mean 'radius'?)"},
-    {"UnknownMaterial", [](LiveScene& s) { s.add_sphere({0, 0, 0}, 1, "gold"); },
-     "add_sphere().material: unknown material 'gold' (materials: 'm')",
+    {"UnknownMaterial", [](LiveScene& s) { s.add_object("sphere", {{"radius", 1}}, "gold"); },
+     "add_object(\"sphere\").material: unknown material 'gold' (materials: 'm')",
      R"("objects": [{"type": "sphere", "material": "gold"}])",
      "t.json: objects[0].material: unknown material 'gold' (materials: 'm')"},
     {"PluginValidation",
@@ -73,8 +73,8 @@ const ErrorCase kCases[] = {
      R"("objects": [{"type": "quadric", "coefficients": [1, 1, 1, 0, 0, 0, 0, 0, 0, -1],
                      "clip_min": [0, 0, 0], "clip_max": [1, -1, 1]}])",
      "t.json: objects[0].clip_max: entry 1 must be >= clip_min (0), got -1"},
-    {"CoordinateOutOfRange", [](LiveScene& s) { s.add_sphere({2e7, 0, 0}, 1); },
-     "add_sphere().center[0]: must be in [-10000000, 10000000], got 20000000",
+    {"CoordinateOutOfRange", [](LiveScene& s) { s.add_object("sphere", {{"center", {2e7, 0, 0}}, {"radius", 1}}); },
+     "add_object(\"sphere\").center[0]: must be in [-10000000, 10000000], got 20000000",
      R"("objects": [{"type": "sphere", "center": [2e7, 0, 0]}])",
      "t.json: objects[0].center[0]: must be in [-10000000, 10000000], got 20000000"},
     {"OpaqueIor", [](LiveScene& s) { s.set_material("glass", {.ior = 0.5}); },
@@ -146,13 +146,15 @@ TEST(ApiErrorsMore, TextureThatIsNotThereNamesTheFile) {
 }
 
 TEST(ApiErrorsMore, ObjectTypeCannotChange) {
-  EXPECT_EQ(api_error([](LiveScene& s) { s.update_object(s.add_sphere({0, 0, 0}, 1), {{"type", "box"}}); }),
+  EXPECT_EQ(api_error([](LiveScene& s) {
+              s.update_object(s.add_object("sphere", {{"radius", 1}}), {{"type", "box"}});
+            }),
             "update_object(#1).type: an object's type cannot change (remove it and add another)");
 }
 
 TEST(ApiErrorsMore, RemovedIdsAreRefused) {
   EXPECT_EQ(api_error([](LiveScene& s) {
-              const ObjectId id = s.add_sphere({0, 0, 0}, 1);
+              const ObjectId id = s.add_object("sphere", {{"radius", 1}});
               s.remove_object(id);
               s.move_object(id, {1, 0, 0});
             }),
@@ -169,7 +171,7 @@ TEST(ApiErrorsMore, AFailedEditChangesNothing) {
   Engine engine;
   LiveScene scene(engine);
   scene.set_image({.width = 16, .height = 8, .spp = 1, .max_depth = 2});
-  const ObjectId ball = scene.add_sphere({0, 0, 0}, 1);
+  const ObjectId ball = scene.add_object("sphere", {{"radius", 1}});
   scene.add_light(PointLight{.position = {0, 4, 4}});
   Renderer renderer(engine, "reference");
   renderer.render(scene);

@@ -79,13 +79,16 @@ void build_in_code(LiveScene& s) {
   s.add_light(DirectionalLight{.direction = {-0.5, -0.5, 0.7}, .intensity = 0.6});
   s.add_light(PointLight{.position = {2, 3.5, 2}, .color = {1, 0.8, 0.6}, .linear = 0.1, .radius = 0.15});
   const Rotation tilt{.axis = {1, 0, -0.5}, .degrees = 30};
-  s.add_plane({0, 0, 0}, {0, 1, 0}, "floor");
-  s.add_sphere({-1.5, 1, 1}, 1, "glass");
-  s.add_sphere({1.8, 1, -0.5}, 1, "mirror");
+  s.add_object("plane", {{"point", glm::dvec3{0, 0, 0}}, {"normal", glm::dvec3{0, 1, 0}}}, "floor");
+  s.add_object("sphere", {{"center", glm::dvec3{-1.5, 1, 1}}, {"radius", 1}}, "glass");
+  s.add_object("sphere", {{"center", glm::dvec3{1.8, 1, -0.5}}, {"radius", 1}}, "mirror");
   s.add_object("sphere", {{"center", glm::dvec3{0, 1.3, -3}}, {"radius", 0.8}}, "planet", tilt);
-  s.add_ring({0, 1.3, -3}, 1, 1.4, "copper", tilt);
-  s.add_box({-3, 0.6, 2.5}, {0.6, 0.6, 0.6}, "copper", Rotation{.axis = {0, 1, 0}, .degrees = 30});
-  s.add_torus({-4, 0.9, -2}, 0.6, 0.2, "", Rotation{.quaternion = glm::dvec4{0.8, 0.6, 0, 0}});
+  s.add_object("ring", {{"center", glm::dvec3{0, 1.3, -3}}, {"inner_radius", 1}, {"outer_radius", 1.4}}, "copper",
+               tilt);
+  s.add_object("box", {{"center", glm::dvec3{-3, 0.6, 2.5}}, {"half_size", glm::dvec3{0.6, 0.6, 0.6}}}, "copper",
+               Rotation{.axis = {0, 1, 0}, .degrees = 30});
+  s.add_object("torus", {{"center", glm::dvec3{-4, 0.9, -2}}, {"major_radius", 0.6}, {"minor_radius", 0.2}}, "",
+               Rotation{.quaternion = glm::dvec4{0.8, 0.6, 0, 0}});
   s.add_object("cylinder", {{"center", glm::dvec3{3, 0, 2.5}}, {"radius", 0.45}, {"height", 1.1}}, "copper");
   s.add_object("cone", {{"center", glm::dvec3{4, 1.6, -1.8}}, {"radius", 0.6}, {"height", 1.6}}, "",
                Rotation{.axis = {1, 0, 0}, .degrees = 180});

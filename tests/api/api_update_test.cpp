@@ -19,12 +19,12 @@ std::vector<ObjectId> sphere_field(LiveScene& scene, int n, int width) {
   scene.set_image({.width = width, .height = width * 3 / 4, .spp = 1, .max_depth = 2});
   scene.set_material("red", {.color = {0.8, 0.2, 0.1}, .specular = 0.3});
   scene.add_light(PointLight{.position = {10, 40, 20}});
-  scene.add_plane({0, -0.5, 0}, {0, 1, 0});
+  scene.add_object("plane", {{"point", glm::dvec3{0, -0.5, 0}}, {"normal", glm::dvec3{0, 1, 0}}});
   std::vector<ObjectId> ids;
   const int side = int(std::ceil(std::sqrt(double(n))));
   for (int i = 0; i < n; ++i) {
     const double x = (i % side - side / 2) * 0.5, z = (i / side - side / 2) * 0.5;
-    ids.push_back(scene.add_sphere({x, 0, z}, 0.2, "red"));
+    ids.push_back(scene.add_object("sphere", {{"center", glm::dvec3{x, 0, z}}, {"radius", 0.2}}, "red"));
   }
   return ids;
 }
@@ -88,7 +88,7 @@ TEST_P(ApiUpdate, EveryKindOfEditRendersLikeAFreshRenderer) {
   expect_same_pixels(renderer.render(scene), from_scratch(engine, scene, backend));
 
   scene.remove_object(ids[7]);
-  scene.add_box({1, 0.5, 1}, {0.3, 0.3, 0.3}, "red");
+  scene.add_object("box", {{"center", glm::dvec3{1, 0.5, 1}}, {"half_size", glm::dvec3{0.3, 0.3, 0.3}}}, "red");
   scene.update_light(second, DirectionalLight{.direction = {1, -1, 0}, .intensity = 0.5});
   const UpdateCounters before = renderer.counters();
   expect_same_pixels(renderer.render(scene), from_scratch(engine, scene, backend));

@@ -39,7 +39,7 @@ TEST_F(CliSceneInput, DashReadsTheSceneFromStandardInput) {
   ASSERT_TRUE(ExitedWith(run({"render", (folder / "sphere.json").string(), "-b", "reference", "-o",
                               from_file.string()}),
                          0));
-  const RunResult r = run_with_stdin(folder, "render - -b reference -o '" + from_stdin.string() + "'",
+  const RunResult r = run_with_stdin(folder, "render - -q -b reference -o '" + from_stdin.string() + "'",
                                      folder / "sphere.json", dir().parent_path());
   ASSERT_TRUE(ExitedWith(r, 0));
   EXPECT_EQ(r.err, "");
@@ -54,6 +54,7 @@ TEST_F(CliSceneInput, TexturePathsAreRelativeToTheCurrentFolder) {
   EXPECT_TRUE(StderrHas(r, {"prism: error: <stdin>: textures.planet", "../textures/planet.png"}));
 }
 
+// -q leaves out the summary line, not the warnings.
 TEST_F(CliSceneInput, WarningsGoToStderrAndTheRenderSucceeds) {
   const fs::path scene = write("bright.json", R"({"prism": 1,
     "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
@@ -61,7 +62,7 @@ TEST_F(CliSceneInput, WarningsGoToStderrAndTheRenderSucceeds) {
     "lights": [{"type": "point", "position": [0, 5, 5]}],
     "materials": {"m": {"color": [255, 128, 0]}},
     "objects": [{"type": "sphere", "radius": 1, "material": "m"}, {"type": "sphere", "radius": 1, "center": [0, 0, 9]}]})");
-  const RunResult r = run({"render", scene.string(), "-b", "reference", "-o", path("out.png").string()});
+  const RunResult r = run({"render", scene.string(), "-q", "-b", "reference", "-o", path("out.png").string()});
   ASSERT_TRUE(ExitedWith(r, 0));
   EXPECT_EQ(r.err, "prism: warning: " + scene.string() +
                        ": materials.m.color: [255, 128, 0] looks like 0-255 values; colours run from 0 to 1 "

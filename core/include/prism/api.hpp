@@ -6,7 +6,7 @@
 //   prism::LiveScene scene(engine);              // an empty scene
 //   scene.set_camera({.position = {0, 2, 8}, .look_at = {0, 1, 0}});
 //   scene.set_material("red", {.color = {0.8, 0.1, 0.1}});
-//   prism::ObjectId ball = scene.add_sphere({0, 1, 0}, 1.0, "red");
+//   prism::ObjectId ball = scene.add_object("sphere", {{"center", {0, 1, 0}}, {"radius", 1.0}}, "red");
 //   scene.add_light(prism::PointLight{.position = {4, 6, 4}});
 //   prism::Renderer renderer(engine, "auto");    // or "embree", "vulkan", ...
 //   prism::Image first = renderer.render(scene);
@@ -178,17 +178,11 @@ class LiveScene {
   // Adds the material, or replaces the one of that name (objects using it follow).
   void set_material(const std::string& name, const MaterialDesc& material);
 
-  // --- objects: any primitive type through its plugin
+  // --- objects: any primitive type through its plugin. There are no
+  // per-type helpers: `params` are the fields the plugin declares, checked
+  // against its own field table, so a new primitive plugin needs no API edit.
   ObjectId add_object(const std::string& type, const Params& params, const std::string& material = "",
                       const std::optional<Rotation>& rotation = std::nullopt);
-  ObjectId add_sphere(const glm::dvec3& center, double radius, const std::string& material = "");
-  ObjectId add_plane(const glm::dvec3& point, const glm::dvec3& normal, const std::string& material = "");
-  ObjectId add_box(const glm::dvec3& center, const glm::dvec3& half_size, const std::string& material = "",
-                   const std::optional<Rotation>& rotation = std::nullopt);
-  ObjectId add_torus(const glm::dvec3& center, double major_radius, double minor_radius,
-                     const std::string& material = "", const std::optional<Rotation>& rotation = std::nullopt);
-  ObjectId add_ring(const glm::dvec3& center, double inner_radius, double outer_radius,
-                    const std::string& material = "", const std::optional<Rotation>& rotation = std::nullopt);
   // Changes some fields of an object (the others keep their values).
   void update_object(ObjectId id, const Params& params);
   void move_object(ObjectId id, const glm::dvec3& center);
