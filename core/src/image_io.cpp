@@ -98,8 +98,7 @@ ImageFile png_pixels(const Image& image) {
   file.pixels.resize(image.rgb.size());
   for (size_t i = 0; i < file.pixels.size(); ++i) {
     // round(255 * oetf(clamp(v))) exactly, so the writer's own quantisation is a no-op.
-    double v = std::clamp(double(image.rgb[i]), 0.0, 1.0);
-    file.pixels[i] = static_cast<float>(std::lround(255.0 * linear_to_srgb(v)) / 255.0);
+    file.pixels[i] = static_cast<float>(linear_to_srgb8(image.rgb[i]) / 255.0);
   }
   return file;
 }

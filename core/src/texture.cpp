@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <cmath>
 #include <compare>
@@ -54,6 +55,55 @@ glm::vec4 expand_channels(const float* p, int channels) {
 double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 double linear_to_srgb(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055; }
+
+namespace {
+
+// The code linear_to_srgb8 stands for, computed the slow way.
+int srgb8_by_formula(float linear) { return int(std::lround(255.0 * linear_to_srgb(std::clamp(double(linear), 0.0, 1.0)))); }
+
+// For each code k, the smallest float in [0, 1] whose code is at least k
+// (the code only grows with the value), found by bisection over the bit
+// patterns of the floats in [0, 1], which order as the floats do; and for
+// each of kBuckets equal slices of [0, 1], the code at its start, so that a
+// lookup steps over at most a few thresholds.
+class Srgb8Table {
+ public:
+  Srgb8Table() {
+    threshold_[0] = 0.0f;
+    for (int k = 1; k < 256; ++k) threshold_[k] = smallest_with_code(k);
+    for (int b = 0; b < kBuckets; ++b) bucket_code_[b] = uint8_t(srgb8_by_formula(float(b) / kBuckets));
+  }
+
+  uint8_t code(float linear) const {
+    if (!(linear > 0.0f)) return 0;  // NaN too
+    if (linear >= 1.0f) return 255;
+    int code = bucket_code_[int(linear * kBuckets)];  // exact: kBuckets is a power of two
+    while (code < 255 && linear >= threshold_[code + 1]) ++code;
+    return uint8_t(code);
+  }
+
+ private:
+  static constexpr int kBuckets = 4096;
+
+  static float smallest_with_code(int k) {
+    uint32_t lo = 0, hi = std::bit_cast<uint32_t>(1.0f);  // code(lo) < k <= code(hi)
+    while (hi - lo > 1) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      (srgb8_by_formula(std::bit_cast<float>(mid)) >= k ? hi : lo) = mid;
+    }
+    return std::bit_cast<float>(hi);
+  }
+
+  float threshold_[256];
+  uint8_t bucket_code_[kBuckets];
+};
+
+}  // namespace
+
+uint8_t linear_to_srgb8(float linear) {
+  static const Srgb8Table table;
+  return table.code(linear);
+}
 
 namespace {
 

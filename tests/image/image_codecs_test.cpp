@@ -6,7 +6,11 @@
 #include <gtest/gtest.h>
 #include <png.h>
 
+#include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "prism/image_file.hpp"
 #include "prism/image_io.hpp"
@@ -247,3 +251,36 @@ TEST_F(ImageCodecs, ExrReadsAsOpenImageIOReadsIt) {
 
 }  // namespace
 }  // namespace prism
+
+// linear_to_srgb8's table lookup against the formula it stands for, at
+// every float within 2000 ulps of each code's threshold (where a table could
+// be off by one) and at 200,000 spread over [0, 1]; plus values worked out
+// by hand: 255 * (1.055 * 0.18^(1/2.4) - 0.055) = 117.65, 255 * 12.92 * 0.001 = 3.29.
+TEST(Srgb8Codes, EqualTheFormulaEverywhereTheCodeChanges) {
+  auto formula = [](float v) { return int(std::lround(255.0 * prism::linear_to_srgb(std::clamp(double(v), 0.0, 1.0)))); };
+  EXPECT_EQ(prism::linear_to_srgb8(0.18f), 118);
+  EXPECT_EQ(prism::linear_to_srgb8(0.001f), 3);
+  EXPECT_EQ(prism::linear_to_srgb8(0.0f), 0);
+  EXPECT_EQ(prism::linear_to_srgb8(1.0f), 255);
+  EXPECT_EQ(prism::linear_to_srgb8(-3.0f), 0);
+  EXPECT_EQ(prism::linear_to_srgb8(7.0f), 255);
+  EXPECT_EQ(prism::linear_to_srgb8(std::numeric_limits<float>::quiet_NaN()), 0);
+  int mismatches = 0;
+  for (int k = 1; k < 256; ++k) {
+    // The smallest float with code k, by bisection on the formula itself.
+    uint32_t lo = 0, hi = std::bit_cast<uint32_t>(1.0f);
+    while (hi - lo > 1) {
+      const uint32_t mid = lo + (hi - lo) / 2;
+      (formula(std::bit_cast<float>(mid)) >= k ? hi : lo) = mid;
+    }
+    for (uint32_t bits = hi - 2000; bits <= hi + 2000; ++bits) {
+      const float v = std::bit_cast<float>(bits);
+      if (v <= 1.0f) mismatches += prism::linear_to_srgb8(v) != formula(v);
+    }
+  }
+  for (int i = 0; i <= 200000; ++i) {
+    const float v = float(i) / 200000.0f;
+    mismatches += prism::linear_to_srgb8(v) != formula(v);
+  }
+  EXPECT_EQ(mismatches, 0);
+}

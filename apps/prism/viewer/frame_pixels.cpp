@@ -8,12 +8,7 @@
 
 namespace prism::viewer {
 
-uint8_t srgb8(float linear) {
-  if (std::isnan(linear)) return 0;  // what the PNG writer stores for NaN as well
-  const double v = std::clamp(double(linear), 0.0, 1.0);
-  const long code = std::lround(255.0 * linear_to_srgb(v));
-  return static_cast<uint8_t>(std::clamp(code, 0L, 255L));
-}
+uint8_t srgb8(float linear) { return linear_to_srgb8(linear); }
 
 std::vector<uint8_t> to_rgba8(const Image& image) {
   const size_t pixels = size_t(image.width) * size_t(image.height);
