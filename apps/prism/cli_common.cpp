@@ -9,6 +9,7 @@
 #include <mutex>
 #include <nlohmann/json.hpp>
 
+#include "prism/status.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
@@ -212,6 +213,14 @@ std::function<void(double)> progress_bar(const ProgressLabel& label) {
 }
 
 void finish_progress_bar() { end_progress_line(); }
+
+void show_status_notices() {
+  set_status_handler([](const std::string& message) {
+    end_progress_line();
+    std::fprintf(stderr, "prism: %s\n", message.c_str());
+    std::fflush(stderr);
+  });
+}
 
 void end_progress_line() {
   std::lock_guard lock(progress_mutex);

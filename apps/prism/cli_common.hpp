@@ -87,6 +87,10 @@ void finish_progress_bar();
 // ends its line, so that the message is not glued to it.
 void end_progress_line();
 
+// Prints the core's notices of slow steps (prism/status.hpp) on stderr,
+// each on a line of its own: "prism: opengl: compiling the kernel (...)".
+void show_status_notices();
+
 // --threads N: InputError unless N >= 1.
 void check_thread_count(const std::optional<int>& threads);
 // TBB's worker limit for the run (the CPU backends render and trace with

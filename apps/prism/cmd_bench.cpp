@@ -122,6 +122,7 @@ nlohmann::ordered_json to_json(const bench::Result& r) {
 }
 
 int run_bench(const BenchArgs& args) {
+  show_status_notices();
   if (!args.json.empty()) check_output_path(args.json, {".json"});
   if (args.frames < 1) throw InputError("--frames must be >= 1, got " + std::to_string(args.frames));
   if (args.warmup < 1) throw InputError("--warmup must be >= 1, got " + std::to_string(args.warmup));

@@ -96,6 +96,7 @@ void print_summary(const RenderArgs& args, const FramePlan& plan, const std::str
 // One image, or each frame of a camera path, from one prepared backend.
 int run_render(const RenderArgs& args) {
   check_outputs(args);
+  if (!args.quiet) show_status_notices();
   const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;

@@ -8,6 +8,7 @@
 #include "kernel_source.hpp"
 #include "prism/errors.hpp"
 #include "program_cache.hpp"
+#include "prism/status.hpp"
 
 namespace prism::gl {
 
@@ -155,6 +156,7 @@ GLuint build_program(const std::string& source, const std::string& driver_identi
     program = load_cached(stats.cache_file, key, stats);
   }
   if (program == 0) {
+    notify_status("opengl: compiling the kernel (" + gpu::compile_reason(stats.cache) + ")");
     program = compile_and_link(source, key, stats);
     if (!stats.cache_file.empty()) store_cached(program, stats.cache_file, key);
   }

@@ -10,6 +10,7 @@
 #include "kernel_source.hpp"
 #include "prism/errors.hpp"
 #include "program_cache.hpp"
+#include "prism/status.hpp"
 #include "vk_compiler.hpp"
 
 namespace prism::vk {
@@ -183,6 +184,7 @@ VkPipeline build_pipeline(const Context& context, const PipelineLayout& layout, 
     hit = load_entry(context, stats.cache_file, key, entry, stats);
   }
   if (!hit) {
+    notify_status("vulkan: compiling the kernel (" + gpu::compile_reason(stats.cache) + ")");
     const auto compile_start = std::chrono::steady_clock::now();
     entry.spirv = compile(source, key, stats);
     stats.glslang_ms += gpu::ms_since(compile_start);
