@@ -98,11 +98,17 @@ RunResult CliTest::run(const std::vector<std::string>& args, std::optional<std::
     ADD_FAILURE() << run.start_error;
     return result;
   }
+  return run_result(run, result.command);
+}
+
+RunResult run_result(const prism::test::CapturedRun& run, std::string command) {
+  RunResult result;
   result.exited = run.exited;
   result.status = run.status;
   result.signal = run.signal;
   result.out = run.out;
   result.err = run.err;
+  result.command = std::move(command);
   return result;
 }
 

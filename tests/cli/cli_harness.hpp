@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "scene_text.hpp"
+#include "test_support.hpp"
 
 namespace prism::cli_test {
 
@@ -24,6 +25,8 @@ struct RunResult {
   std::string command;    // for failure messages
 };
 std::ostream& operator<<(std::ostream& os, const RunResult& r);
+// The outcome of a run the test support captured, and the command it ran.
+RunResult run_result(const prism::test::CapturedRun& run, std::string command);
 
 fs::path prism_binary();             // <build>/bin/prism
 fs::path default_plugin_folder();    // <build>/lib/prism

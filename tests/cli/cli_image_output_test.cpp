@@ -93,45 +93,39 @@ class FullDiskOutput : public ImageOutput {
     ImageOutput::TearDown();
   }
   void fill() { ASSERT_TRUE(disk.fill()); }
+  void expect_kept(const std::string& name, const std::string& message);
   std::vector<std::string> leftovers() const { return disk.files(); }
   prism::test::SmallDisk disk;
   fs::path disk_;
 };
 
-TEST_F(FullDiskOutput, AnImageIsNotReplaced) {
-  for (const char* name : {"out.png", "out.exr"}) {
-    SCOPED_TRACE(name);
-    const fs::path out = disk_ / name;
-    ASSERT_TRUE(ExitedWith(render(out, {"--width", "16", "--height", "12"}), 0));
-    const std::string before = read_file(out);
-    fill();
-    const RunResult r = render(out, {"--width", "32", "--height", "24"});
-    EXPECT_TRUE(ExitedWith(r, 1));
-    EXPECT_TRUE(StderrHas(r, {"cannot write " + out.string() + ": No space left on device"}));
-    EXPECT_EQ(read_file(out), before);
-    EXPECT_EQ(leftovers(), std::vector<std::string>{name});
-    fs::remove(disk_ / "filler");
-    fs::remove(out);
-  }
+// `name` is written on a disk with room, then again on the full disk: exit
+// status 1 with `message` on stderr, and the older file stays, alone.
+void FullDiskOutput::expect_kept(const std::string& name, const std::string& message) {
+  SCOPED_TRACE(name);
+  const fs::path out = disk_ / name;
+  ASSERT_TRUE(ExitedWith(render(out, {"--width", "16", "--height", "12"}), 0));
+  const std::string before = read_file(out);
+  fill();
+  const RunResult r = render(out, {"--width", "32", "--height", "24"});
+  EXPECT_TRUE(ExitedWith(r, 1));
+  EXPECT_TRUE(StderrHas(r, {message}));
+  EXPECT_EQ(read_file(out), before);
+  EXPECT_EQ(leftovers(), std::vector<std::string>{name});
+  fs::remove(disk_ / "filler");
+  fs::remove(out);
 }
 
-// The formats OpenImageIO writes are staged the same way: its failure on a
-// full disk is exit status 1 naming the file, and the older one stays.
+TEST_F(FullDiskOutput, AnImageIsNotReplaced) {
+  for (const char* name : {"out.png", "out.exr"})
+    expect_kept(name, "cannot write " + (disk_ / name).string() + ": No space left on device");
+}
+
+// The other formats (OpenImageIO's TIFF, our JPEG and HDR writers) are
+// staged the same way: exit status 1 naming the file, and the older one stays.
 TEST_F(FullDiskOutput, AnImageOpenImageIOWritesIsNotReplaced) {
-  for (const char* name : {"out.tif", "out.jpg", "out.hdr"}) {
-    SCOPED_TRACE(name);
-    const fs::path out = disk_ / name;
-    ASSERT_TRUE(ExitedWith(render(out, {"--width", "16", "--height", "12"}), 0));
-    const std::string before = read_file(out);
-    fill();
-    const RunResult r = render(out, {"--width", "32", "--height", "24"});
-    EXPECT_TRUE(ExitedWith(r, 1));
-    EXPECT_TRUE(StderrHas(r, {"prism: error: cannot write " + out.string() + ": "}));
-    EXPECT_EQ(read_file(out), before);
-    EXPECT_EQ(leftovers(), std::vector<std::string>{name});
-    fs::remove(disk_ / "filler");
-    fs::remove(out);
-  }
+  for (const char* name : {"out.tif", "out.jpg", "out.hdr"})
+    expect_kept(name, "prism: error: cannot write " + (disk_ / name).string() + ": ");
 }
 
 // The image and the statistics are both written before either replaces its

@@ -17,16 +17,8 @@ RunResult run_with_stdin(const fs::path& folder, const std::string& args, const 
   std::vector<std::string> env;
   for (char** e = environ; *e; ++e)
     if (std::string(*e).rfind("PRISM_PLUGIN_PATH=", 0) != 0) env.emplace_back(*e);
-  const prism::test::CapturedRun run =
-      prism::test::run_captured({"/bin/sh", "-c", command}, env, logs / "stdin.out", logs / "stdin.err");
-  RunResult r;
-  r.exited = run.exited;
-  r.status = run.status;
-  r.signal = run.signal;
-  r.out = run.out;
-  r.err = run.err;
-  r.command = command;
-  return r;
+  return run_result(prism::test::run_captured({"/bin/sh", "-c", command}, env, logs / "stdin.out", logs / "stdin.err"),
+                    command);
 }
 
 class CliSceneInput : public CliTest {};
