@@ -1,4 +1,4 @@
-// The OpenGL backend: the scene-specialised GLSL kernel (backends/glsl) run
+// The OpenGL backend: the scene-specialised GLSL kernel (gpu/) run
 // as a GL 4.5 compute shader in a headless EGL context. Work is dispatched
 // in tiles small enough that no dispatch trips a desktop driver's watchdog;
 // each tile's pixels and ray counters are read back before the next. A live

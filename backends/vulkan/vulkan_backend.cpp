@@ -1,4 +1,4 @@
-// The Vulkan backend: the scene-specialised GLSL kernel (backends/glsl),
+// The Vulkan backend: the scene-specialised GLSL kernel (gpu/),
 // compiled to SPIR-V at run time with glslang, run as a compute pipeline on
 // the chosen Vulkan 1.2 device. Scene data and the BVH sit in device-local
 // storage buffers; the image is rendered tile by tile, each tile's pixels

@@ -4,7 +4,7 @@
 // storage buffers. Each ends with exit status 2, a message naming the JSON
 // path (or the file) and the limit, and nothing written. The limits
 // themselves are checked with literal numbers in tests/limits and
-// backends/glsl/gpu_limits_test.cpp.
+// gpu/gpu_limits_test.cpp.
 #include <nlohmann/json.hpp>
 
 #include <algorithm>

@@ -136,7 +136,7 @@ TEST_P(ProgramCache, SecondRenderCompilesNothingAndCorruptFilesAreRebuilt) {
 // Each is a miss and the kernel is compiled again; the folder cannot be
 // replaced, which is said once on stderr. A cache folder that cannot be
 // written is said once too, not silently ignored.
-// Both GPU backends read and write entries through backends/glsl/program_cache.cpp:
+// Both GPU backends read and write entries through gpu/program_cache.cpp:
 // one of them is enough, and each case costs a kernel compile.
 TEST_P(ProgramCache, OddEntriesAreMissesAndAnUnwritableCacheIsSaid) {
   const std::string backend = GetParam();

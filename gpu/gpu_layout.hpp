@@ -1,5 +1,5 @@
 // The std430 buffer layouts the generated kernels read, mirrored in C++.
-// backends/glsl/scene.glsl declares the same structs; every size and offset
+// gpu/scene.glsl declares the same structs; every size and offset
 // here is static_asserted, so a change on one side that the other misses
 // fails to compile instead of rendering garbage.
 #pragma once

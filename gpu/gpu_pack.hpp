@@ -1,6 +1,5 @@
 // The parts pack_scene (gpu_scene.cpp) is made of, for update_packed_scene
-// (gpu_update.cpp) to redo only those a change touches. Internal to
-// backends/glsl.
+// (gpu_update.cpp) to redo only those a change touches. Internal to gpu/.
 #pragma once
 
 #include <cstdint>

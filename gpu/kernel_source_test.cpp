@@ -61,8 +61,18 @@ TEST(KernelSource, TraceKernelLeavesShadingOut) {
   options.trace = true;
   KernelSource kernel = generate_kernel(pack_scene(scene), options);
   EXPECT_NE(kernel.text.find("#define PRISM_MODE_TRACE 1"), std::string::npos);
-  EXPECT_EQ(kernel.text.find("===== backends/glsl/shading.glsl"), std::string::npos);
+  EXPECT_EQ(kernel.text.find("===== gpu/shading.glsl"), std::string::npos);
   EXPECT_EQ(kernel.text.find("vec3 prism_local_light("), std::string::npos);
+}
+
+// The counterpart of TraceKernelLeavesShadingOut: a render kernel has the
+// shading section that test looks for by name, so that test cannot pass by a
+// misspelt section title.
+TEST(KernelSource, RenderKernelHasShadingSection) {
+  Registry registry;
+  Scene scene = load(registry, kSpheresOnly);
+  KernelSource kernel = generate_kernel(pack_scene(scene), KernelOptions{});
+  EXPECT_NE(kernel.text.find("===== gpu/shading.glsl"), std::string::npos);
 }
 
 TEST(KernelSource, HashIsFnv1a64) {
