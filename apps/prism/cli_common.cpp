@@ -14,6 +14,7 @@
 #include "prism/errors.hpp"
 #include "prism/image_file.hpp"
 #include "prism/image_io.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism::cli {
 
@@ -53,13 +54,14 @@ std::vector<std::pair<std::string, double>> phase_times(const BackendChoice& cho
   const BackendStats stats = choice.backend->stats();
   // A GPU backend compiles its kernel inside its first render or trace call:
   // that time is `compile`, not `render`.
-  if (auto it = stats.ms.find("compile"); it != stats.ms.end()) {
-    ms["compile"] = it->second;
-    if (ms.count("render")) ms["render"] = std::max(0.0, ms["render"] - it->second);
+  if (auto it = stats.ms.find(ms_key::kCompile); it != stats.ms.end()) {
+    ms[ms_key::kCompile] = it->second;
+    if (ms.count(ms_key::kRender)) ms[ms_key::kRender] = std::max(0.0, ms[ms_key::kRender] - it->second);
   }
   ms["total"] = timer.total();
   std::vector<std::pair<std::string, double>> times;
-  for (const char* phase : {"load", "build", "compile", "render", "total"}) {
+  // load and total are the command's own phases: no backend reports them.
+  for (const char* phase : {"load", ms_key::kBuild, ms_key::kCompile, ms_key::kRender, "total"}) {
     auto it = ms.find(phase);
     times.emplace_back(phase, it == ms.end() ? 0.0 : it->second);
   }

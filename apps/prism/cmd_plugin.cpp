@@ -29,6 +29,7 @@
 #include "plugin_packets.hpp"
 #include "prism/errors.hpp"
 #include "prism/scene_loader.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism::cli {
 
@@ -172,7 +173,7 @@ std::vector<TraceResult> trace_on(const BackendPlugin& plugin, const std::string
   backend->prepare(scene);
   std::vector<TraceResult> results = backend->trace(rays);
   const BackendStats stats = backend->stats();
-  if (auto it = stats.info.find("precision"); it != stats.info.end()) *precision = it->second;
+  if (auto it = stats.info.find(info_key::kPrecision); it != stats.info.end()) *precision = it->second;
   return results;
 }
 

@@ -10,6 +10,7 @@
 #include "prism/image_io.hpp"
 #include "prism/ray_csv.hpp"
 #include "prism/scene_loader.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism::cli {
 
@@ -49,9 +50,9 @@ int run_trace(const TraceArgs& args) {
   ms["load"] = timer.lap();
   BackendChoice choice = open_backend(registry, args.backend);
   choice.backend->prepare(scene);
-  ms["build"] = timer.lap();
+  ms[ms_key::kBuild] = timer.lap();
   auto results = choice.backend->trace(rays);
-  ms["render"] = timer.lap();
+  ms[ms_key::kRender] = timer.lap();
   // Both complete on disk before either replaces its older file.
   StagedFile output = stage_text_file(args.output, format_results(results, args.digits));
   std::optional<StagedFile> stats;

@@ -13,6 +13,7 @@
 #include "cli_common.hpp"
 #include "prism/errors.hpp"
 #include "prism/image_io.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism::bench {
 
@@ -89,7 +90,7 @@ double timed_write(const Image& image, const std::filesystem::path& file) {
 // writing the last one, into `result`.
 void profile_frames(const BackendStats& before, const BackendStats& after, int frames, const Image& last,
                     Result& result) {
-  const std::string prefix = "profile.";
+  const std::string prefix = ms_key::kProfilePrefix;
   for (const auto& [key, ms] : after.ms) {
     if (key.rfind(prefix, 0) != 0) continue;
     const auto it = before.ms.find(key);
@@ -171,13 +172,13 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
     if (i == 0) result.first_frame_ms = ms;
   }
   BackendStats before = backend->stats();
-  if (auto it = before.ms.find("compile"); it != before.ms.end()) {
+  if (auto it = before.ms.find(ms_key::kCompile); it != before.ms.end()) {
     result.compile_ms = it->second;
     result.first_frame_ms = std::max(0.0, result.first_frame_ms - it->second);
   }
-  if (auto it = before.counters.find("scene_bytes"); it != before.counters.end())
+  if (auto it = before.counters.find(counter::kSceneBytes); it != before.counters.end())
     result.memory.scene_bytes = int64_t(it->second);
-  if (auto it = before.info.find("device"); it != before.info.end()) result.device = it->second;
+  if (auto it = before.info.find(info_key::kDevice); it != before.info.end()) result.device = it->second;
 
   reset_peak_resident();
   Image last;

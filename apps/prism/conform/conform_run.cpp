@@ -13,6 +13,7 @@
 #include "prism/image_file.hpp"
 #include "prism/limits.hpp"
 #include "prism/scene_loader.hpp"
+#include "prism/stats_keys.hpp"
 
 namespace prism::conform {
 
@@ -63,7 +64,7 @@ struct Timed {
 Timed timed_render(Backend& backend, const RenderSettings& settings) {
   auto compile_so_far = [&] {
     const BackendStats s = backend.stats();
-    auto it = s.ms.find("compile");
+    auto it = s.ms.find(ms_key::kCompile);
     return it == s.ms.end() ? 0.0 : it->second;
   };
   const double compile_before = compile_so_far();
@@ -172,8 +173,8 @@ class SceneRun {
       b.prepare_ms = prepare_timer.total();
       Timed t = timed_render(*backend, settings_for(scene, false));
       const BackendStats stats = backend->stats();
-      b.device = stats.info.count("device") ? stats.info.at("device") : probe.reason;
-      b.precision = stats.info.count("precision") ? stats.info.at("precision") : "";
+      b.device = stats.info.count(info_key::kDevice) ? stats.info.at(info_key::kDevice) : probe.reason;
+      b.precision = stats.info.count(info_key::kPrecision) ? stats.info.at(info_key::kPrecision) : "";
       b.render_ms = t.render_ms;
       b.compile_ms = t.compile_ms;
       b.image = std::move(t.image);
