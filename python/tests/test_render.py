@@ -41,8 +41,8 @@ def test_render_rejects_bad_overrides_and_aovs(engine):
     renderer = engine.renderer(engine.load_scene(SHOWCASE), "reference")
     with pytest.raises(ValueError, match=r"^render\(\)\.width: must be in \[1, 16384\], got 0$"):
         renderer.render(width=0)
-    with pytest.raises(ValueError, match=r"aovs: unknown channel 'depth' \(expected id or path\)"):
-        renderer.render(aovs=("depth",))
+    with pytest.raises(ValueError, match=r"aovs: unknown channel 'roughness' \(expected id, path, depth, normal or albedo\)"):
+        renderer.render(aovs=("roughness",))
 
 
 def test_unknown_backend_is_a_value_error(engine):
