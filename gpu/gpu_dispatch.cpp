@@ -54,8 +54,7 @@ Image blank_image(const RenderSettings& settings) {
   image.height = r.height;
   const size_t n = size_t(image.width) * image.height;
   image.rgb.assign(n * 3, 0.0f);
-  if (settings.aov_id) image.id.assign(n, -1.0f);
-  if (settings.aov_path) image.path.assign(n, 0.0f);
+  assign_aovs(image, settings);
   return image;
 }
 
@@ -68,6 +67,9 @@ void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pi
       std::copy_n(px.rgb, 3, &image.rgb[p * 3]);
       if (settings.aov_id) image.id[p] = px.id;
       if (settings.aov_path) image.path[p] = px.path;
+      if (settings.aov_depth) image.depth[p] = px.depth;
+      if (settings.aov_normal) std::copy_n(px.normal, 3, &image.normal[p * 3]);
+      if (settings.aov_albedo) std::copy_n(px.albedo, 3, &image.albedo[p * 3]);
     }
   }
 }

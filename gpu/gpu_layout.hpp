@@ -83,19 +83,22 @@ struct alignas(32) GpuFrame {
   float background[4];
   int32_t size[4];     // width, height, spp, max_depth
   int32_t counts[4];   // objects, bounded objects (the BVH's), lights, nodes
-  int32_t flags[4];    // x: aov path wanted, y: trace ray count
+  int32_t flags[4];    // x: aov path wanted, y: trace ray count, z: depth/normal/albedo AOVs wanted
   int32_t cubemap[6][4];  // per face: texel offset, width, height, unused
   // followed by dvec2 sample_offsets[spp] (offset 352)
 };
 static_assert(sizeof(GpuFrame) == 352 && offsetof(GpuFrame, ambient) == 160 && offsetof(GpuFrame, cubemap) == 256);
 
+// The kernel writes normal, depth and albedo only when flags.z asks for them.
 struct alignas(16) GpuPixel {
   float rgb[3];
   float id;
+  float normal[3];
   float path;
-  float pad[3];
+  float albedo[3];
+  float depth;
 };
-static_assert(sizeof(GpuPixel) == 32);
+static_assert(sizeof(GpuPixel) == 48);
 
 // Render output: the ray counters come first (one per ray kind), then pixels.
 constexpr size_t kRayCounterCount = 8;

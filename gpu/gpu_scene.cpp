@@ -320,6 +320,7 @@ GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const Render
   f.size[2] = s.spp;
   f.size[3] = s.max_depth;
   f.flags[0] = settings.aov_path ? 1 : 0;
+  f.flags[2] = settings.aov_depth || settings.aov_normal || settings.aov_albedo ? 1 : 0;
   return f;
 }
 

@@ -38,7 +38,8 @@ void main() {
 
 struct PrismPixel {
   vec4 rgb_id;
-  vec4 path;
+  vec4 normal_path;
+  vec4 albedo_depth;  // with normal: written only when prism_frame.flags.z asks for them
 };
 layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismOutputBuffer {
   uint prism_counters[8];
@@ -72,7 +73,12 @@ void main() {
   }
   uint index = uint(local.y * PRISM_TILE_ORIGIN.z + local.x);
   prism_pixels[index].rgb_id = vec4(sum / float(prism_frame.size.z), float(first.first_id));
-  prism_pixels[index].path = vec4(float(first.path_hash), 0.0, 0.0, 0.0);
+  if (prism_frame.flags.z != 0) {
+    prism_pixels[index].normal_path = vec4(vec3(first.first_normal), float(first.path_hash));
+    prism_pixels[index].albedo_depth = vec4(first.first_albedo, float(first.first_t));
+  } else {
+    prism_pixels[index].normal_path.w = float(first.path_hash);
+  }
   for (int k = 0; k < PRISM_RAY_KINDS; ++k)
     if (prism_ray_counts[k] != 0u) atomicAdd(prism_counters[k], prism_ray_counts[k]);
 }

@@ -57,7 +57,7 @@ layout(std430, binding = PRISM_BINDING_FRAME) readonly buffer PrismFrameBuffer {
   vec4 background;
   ivec4 size;    // width, height, spp, max_depth
   ivec4 counts;  // objects, bounded objects, lights, BVH nodes
-  ivec4 flags;   // x: path AOV wanted, y: trace ray count
+  ivec4 flags;   // x: path AOV wanted, y: trace ray count, z: depth/normal/albedo AOVs wanted
   ivec4 cubemap[6];
   dvec2 sample_offsets[];
 } prism_frame;

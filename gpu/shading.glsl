@@ -207,10 +207,15 @@ vec3 prism_shade1(PrismRay ray) {
   return result;
 }
 
+// first_t, first_normal, first_albedo: the first hit's t, outward unit
+// normal and colour c (a light sphere's: its colour); +inf, 0, 0 on a miss.
 struct PrismSample {
   vec3 radiance;
   int first_id;
   uint path_hash;
+  double first_t;
+  dvec3 first_normal;
+  vec3 first_albedo;
 };
 
 PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_path) {
@@ -218,6 +223,9 @@ PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_pat
   prism_hash = 2166136261u;
   PrismSample result;
   result.first_id = PRISM_MISS_ID;
+  result.first_t = prism_inf();
+  result.first_normal = dvec3(0.0LF);
+  result.first_albedo = vec3(0.0);
   vec3 w = vec3(1.0), radiance = vec3(0.0);
   PrismRay ray = camera_ray;
   int kind = PRISM_RAY_CAMERA;
@@ -231,10 +239,20 @@ PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_pat
       break;
     }
     if (hit.id < 0) {
+      if (depth == 1) {
+        result.first_t = hit.t;
+        result.first_normal = normalize(ray.origin + hit.t * ray.dir - prism_lights[-2 - hit.id].position.xyz);
+        result.first_albedo = prism_lights[-2 - hit.id].color_intensity.rgb;
+      }
       radiance += w * prism_lights[-2 - hit.id].color_intensity.rgb;
       break;
     }
     PrismShadingPoint s = prism_shading_point(ray, hit);
+    if (depth == 1) {
+      result.first_t = hit.t;
+      result.first_normal = s.front ? s.n : -s.n;
+      result.first_albedo = s.color;
+    }
     PrismMaterial m = prism_materials[s.material];
     bool dielectric = m.params.z >= 1.0;
 #ifdef PRISM_FEATURE_ABSORPTION

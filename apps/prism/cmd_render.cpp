@@ -1,4 +1,4 @@
-// prism render SCENE [-b BACKEND] -o OUT.(png|exr|jpg|tif|hdr|-) [overrides] [--aov id,path] [--stats F.json]
+// prism render SCENE [-b BACKEND] -o OUT.(png|exr|jpg|tif|hdr|-) [overrides] [--aov id,path,depth,normal,albedo] [--stats F.json]
 //   [--frames N [--orbit DEG] | --cameras FILE] [--camera-position X,Y,Z --look-at X,Y,Z] [--fov DEG]
 //   [--threads N] [-q | -v] [--mpi [--tile N]]
 #include <unistd.h>
@@ -40,7 +40,10 @@ RenderSettings settings_for(const Scene& scene, const RenderArgs& args) {
   for (const auto& aov : args.aov) {
     if (aov == "id") settings.aov_id = true;
     else if (aov == "path") settings.aov_path = true;
-    else throw InputError("--aov: unknown channel '" + aov + "' (expected id or path)");
+    else if (aov == "depth") settings.aov_depth = true;
+    else if (aov == "normal") settings.aov_normal = true;
+    else if (aov == "albedo") settings.aov_albedo = true;
+    else throw InputError("--aov: unknown channel '" + aov + "' (expected id, path, depth, normal or albedo)");
   }
   return settings;
 }
@@ -193,7 +196,7 @@ Command add_render_command(CLI::App& app) {
                   "Render from this point instead of the scene's camera: X,Y,Z (with --look-at)");
   sub->add_option("--look-at", args->camera.look_at, "The point that camera looks at: X,Y,Z");
   sub->add_option("--fov", args->camera.fov, "Vertical field of view in degrees, in (0, 180) (default: the scene's)");
-  sub->add_option("--aov", args->aov, "Extra EXR channels: id, path")->delimiter(',');
+  sub->add_option("--aov", args->aov, "Extra EXR channels: id, path, depth (Z), normal (N.X N.Y N.Z), albedo (albedo.R albedo.G albedo.B)")->delimiter(',');
   sub->add_option("--stats", args->stats, "Write run statistics to this JSON file");
   sub->add_option("--frames", args->frames,
                   "Render N frames (1 to 100000) orbiting the scene, to OUT with _NNNN (or its ### run) numbered")

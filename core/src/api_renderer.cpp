@@ -90,6 +90,9 @@ Image Renderer::render(const LiveScene& scene, const RenderOptions& options) {
   check_image_settings(settings.image, "render().");
   settings.aov_id = options.aov_id;
   settings.aov_path = options.aov_path;
+  settings.aov_depth = options.aov_depth;
+  settings.aov_normal = options.aov_normal;
+  settings.aov_albedo = options.aov_albedo;
   sync(scene);
   return impl_->opened.backend->render(settings);
 }

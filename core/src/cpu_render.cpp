@@ -27,6 +27,10 @@ struct Frame {
   size_t index(int i, int j) const { return size_t(j - rect.y) * size_t(rect.width) + size_t(i - rect.x); }
 };
 
+void store3(float* out, const glm::dvec3& v) {
+  for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(v[c]);
+}
+
 // One pixel: the mean of its samples, summed in sample order (so the result
 // never depends on threads), plus the AOVs of sample 0.
 void render_pixel(const Frame& f, Shader& shader, int i, int j) {
@@ -40,6 +44,9 @@ void render_pixel(const Frame& f, Shader& shader, int i, int j) {
       size_t p = f.index(i, j);
       if (f.settings.aov_id) f.image.id[p] = static_cast<float>(r.first_id);
       if (f.settings.aov_path) f.image.path[p] = static_cast<float>(r.path_hash);
+      if (f.settings.aov_depth) f.image.depth[p] = static_cast<float>(r.first_t);
+      if (f.settings.aov_normal) store3(&f.image.normal[p * 3], r.first_normal);
+      if (f.settings.aov_albedo) store3(&f.image.albedo[p * 3], r.first_albedo);
     }
   }
   glm::dvec3 mean = sum / double(s.spp);
@@ -79,8 +86,7 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   image.height = rect.height;
   const size_t pixels = size_t(rect.width) * size_t(rect.height);
   image.rgb.assign(pixels * 3, 0.0f);
-  if (settings.aov_id) image.id.assign(pixels, -1.0f);
-  if (settings.aov_path) image.path.assign(pixels, 0.0f);
+  assign_aovs(image, settings);
   const CameraRays camera_rays(settings.camera ? *settings.camera : scene.camera, s.width, s.height);
   Frame frame{scene, query, settings, camera_rays, rect, image};
   const int tiles_x = (rect.width + kTileSize - 1) / kTileSize;

@@ -107,6 +107,9 @@ ImageFile exr_pixels(const Image& image) {
   std::vector<std::string> names = {"R", "G", "B"};
   if (!image.id.empty()) names.push_back("id");
   if (!image.path.empty()) names.push_back("path");
+  if (!image.depth.empty()) names.push_back("Z");  // EXR's name for depth
+  if (!image.normal.empty()) names.insert(names.end(), {"N.X", "N.Y", "N.Z"});
+  if (!image.albedo.empty()) names.insert(names.end(), {"albedo.R", "albedo.G", "albedo.B"});
   const size_t channels = names.size(), pixels = size_t(image.width) * image.height;
   ImageFile file{image.width, image.height, int(channels), names, PixelFormat::Float, {}};
   file.pixels.resize(pixels * channels);
@@ -116,6 +119,12 @@ ImageFile exr_pixels(const Image& image) {
     size_t c = 3;
     if (!image.id.empty()) out[c++] = image.id[p];
     if (!image.path.empty()) out[c++] = image.path[p];
+    if (!image.depth.empty()) out[c++] = image.depth[p];
+    if (!image.normal.empty()) {
+      std::copy_n(&image.normal[p * 3], 3, out + c);
+      c += 3;
+    }
+    if (!image.albedo.empty()) std::copy_n(&image.albedo[p * 3], 3, out + c);
   }
   return file;
 }

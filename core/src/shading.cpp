@@ -49,7 +49,8 @@ const char* ray_kind_name(int kind) { return kRayKindNames[kind]; }
 
 struct Shader::Surface {
   glm::dvec3 position;
-  glm::dvec3 n;  // facing the incoming ray
+  glm::dvec3 outward;  // the surface's outward normal N
+  glm::dvec3 n;        // N facing the incoming ray
   bool front;
   double cosi;
   double t;
@@ -76,6 +77,7 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   SurfacePoint sp = surface_of(object, ray, hit.prim);
   Surface s;
   s.position = sp.position;
+  s.outward = sp.normal;
   s.front = glm::dot(ray.dir, sp.normal) < 0;
   s.n = s.front ? sp.normal : -sp.normal;
   s.cosi = std::clamp(-glm::dot(ray.dir, s.n), 0.0, 1.0);
@@ -91,6 +93,14 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   }
   s.epsilon = offset_epsilon(s.position);
   return s;
+}
+
+// The first-hit AOVs of a camera ray that meets light `-2 - hit.id`'s sphere.
+void Shader::note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const {
+  const Light& light = scene_.lights[size_t(-2 - hit.id)];
+  result.first_t = hit.t;
+  result.first_normal = glm::normalize(ray.origin + hit.t * ray.dir - light.position);
+  result.first_albedo = light.color;
 }
 
 void Shader::note(uint32_t value) {
@@ -180,10 +190,16 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
       break;
     }
     if (hit.id < 0) {
+      if (depth == 1) note_light_sphere(result, ray, hit);
       radiance += w * scene_.lights[size_t(-2 - hit.id)].color;
       break;
     }
     Surface s = surface_at(ray, hit);
+    if (depth == 1) {
+      result.first_t = hit.t;
+      result.first_normal = s.outward;
+      result.first_albedo = s.color;
+    }
     const Material& m = *s.material;
     if (m.dielectric() && !s.front) w *= glm::exp(-m.absorb * s.t);
     if (!m.dielectric()) {

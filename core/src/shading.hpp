@@ -25,6 +25,12 @@ struct SampleResult {
   glm::dvec3 radiance{0};
   int32_t first_id = kMissId;  // the `id` AOV
   uint32_t path_hash = 0;      // the `path` AOV (24 bits, exact in a float)
+  // The `depth`, `normal` and `albedo` AOVs: the first hit's t, outward unit
+  // normal and surface colour (a light sphere's: its colour); +inf, 0 and 0
+  // on a miss.
+  double first_t = kInfinity;
+  glm::dvec3 first_normal{0};
+  glm::dvec3 first_albedo{0};
 };
 
 // Where a frame's time goes (RenderSettings::profile), summed over threads.
@@ -56,6 +62,7 @@ class Shader {
   struct Surface;  // shading data at one hit
   Surface surface_at(const Ray& ray, const Hit& hit) const;
   Hit closest_in_phase(const Ray& ray, Phase phase) const;
+  void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
   glm::dvec3 local_light(const Surface& s, const glm::dvec3& dir);
   glm::dvec3 shade1(const Ray& ray);
   bool shadowed(size_t light, const Ray& ray, double distance);

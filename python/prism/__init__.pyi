@@ -149,6 +149,15 @@ class Frame:
     @property
     def path(self) -> Optional[npt.NDArray[np.float32]]:
         """float32 (height, width): each pixel's path signature; None unless asked for."""
+    @property
+    def depth(self) -> Optional[npt.NDArray[np.float32]]:
+        """float32 (height, width): the t of sample 0's first hit (inf on a miss); None unless asked for."""
+    @property
+    def normal(self) -> Optional[npt.NDArray[np.float32]]:
+        """float32 (height, width, 3): the first hit's outward unit normal (0 on a miss); None unless asked for."""
+    @property
+    def albedo(self) -> Optional[npt.NDArray[np.float32]]:
+        """float32 (height, width, 3): the first hit's surface colour (0 on a miss); None unless asked for."""
 
 class Hits:
     """The closest hit of each ray, as `prism trace` reports it."""
@@ -192,8 +201,8 @@ class Renderer:
         """Renders the scene with its camera; returns a Frame of NumPy arrays.
 
         width, height, spp, max_depth override the scene's settings for this
-        render; aovs: any of "id" and "path". Bit for bit what `prism render`
-        writes to an EXR."""
+        render; aovs: any of "id", "path", "depth", "normal" and "albedo".
+        Bit for bit what `prism render` writes to an EXR."""
     def trace(self, origins: _Array, directions: _Array, tmin: Union[float, _Array] = 0.0) -> Hits:
         """The closest hit of each ray (N, 3) with t > tmin, as `prism trace`."""
     def counters(self) -> UpdateCounters: ...

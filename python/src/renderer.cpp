@@ -21,6 +21,7 @@ struct RendererHandle {
 struct Frame {
   py::array_t<float> rgb;
   py::object id = py::none(), path = py::none();
+  py::object depth = py::none(), normal = py::none(), albedo = py::none();
 };
 
 struct Hits {
@@ -54,7 +55,10 @@ RenderOptions options_of(std::optional<int> width, std::optional<int> height, st
   for (const std::string& aov : aovs) {
     if (aov == "id") options.aov_id = true;
     else if (aov == "path") options.aov_path = true;
-    else throw py::value_error("aovs: unknown channel '" + aov + "' (expected id or path)");
+    else if (aov == "depth") options.aov_depth = true;
+    else if (aov == "normal") options.aov_normal = true;
+    else if (aov == "albedo") options.aov_albedo = true;
+    else throw py::value_error("aovs: unknown channel '" + aov + "' (expected id, path, depth, normal or albedo)");
   }
   return options;
 }
@@ -68,6 +72,9 @@ Frame render(RendererHandle& r, std::optional<int> width, std::optional<int> hei
   Frame frame{take_as_array(std::move(image.rgb), {h, w, 3})};
   if (options.aov_id) frame.id = take_as_array(std::move(image.id), {h, w});
   if (options.aov_path) frame.path = take_as_array(std::move(image.path), {h, w});
+  if (options.aov_depth) frame.depth = take_as_array(std::move(image.depth), {h, w});
+  if (options.aov_normal) frame.normal = take_as_array(std::move(image.normal), {h, w, 3});
+  if (options.aov_albedo) frame.albedo = take_as_array(std::move(image.albedo), {h, w, 3});
   return frame;
 }
 
@@ -144,7 +151,16 @@ void bind_results(py::module_& m) {
                     "background, -2-k light k's sphere); None unless asked for.")
       .def_readonly("path", &Frame::path,
                     "float32, shape (height, width): each pixel's path signature (sample 0), which compare() "
-                    "splits stable pixels from edges with; None unless asked for.");
+                    "splits stable pixels from edges with; None unless asked for.")
+      .def_readonly("depth", &Frame::depth,
+                    "float32, shape (height, width): the t of sample 0's first hit; inf on a miss; None unless "
+                    "asked for.")
+      .def_readonly("normal", &Frame::normal,
+                    "float32, shape (height, width, 3): the first hit's outward unit normal; 0 on a miss; None "
+                    "unless asked for.")
+      .def_readonly("albedo", &Frame::albedo,
+                    "float32, shape (height, width, 3): the first hit's surface colour (material colour times "
+                    "texture; a light sphere's colour); 0 on a miss; None unless asked for.");
 
   py::class_<Hits>(m, "Hits", "The closest hit of each ray, as `prism trace` reports it.")
       .def_readonly("t", &Hits::t, "float64, shape (N,): the distance along the unit direction; inf on a miss.")
@@ -185,8 +201,8 @@ between tiles with KeyboardInterrupt; the renderer stays usable.)")
            R"(Renders the scene with its camera; returns a Frame of NumPy arrays.
 
 width, height, spp, max_depth: override the scene's image settings for this
-render (None: the scene's). aovs: any of "id" and "path", for Frame.id and
-Frame.path. The pixels are the ones `prism render` writes to an EXR, bit for
+render (None: the scene's). aovs: any of "id", "path", "depth", "normal" and
+"albedo", for the Frame's arrays of those names. The pixels are the ones `prism render` writes to an EXR, bit for
 bit; the arrays take over the renderer's buffers without copying them.
 Raises ValueError for an override out of range, KeyboardInterrupt on Ctrl-C,
 RenderError when the backend fails.)")

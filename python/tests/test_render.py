@@ -28,6 +28,22 @@ def test_render_equals_prism_render_exr_bit_for_bit(engine, backend, tmp_path):
     assert np.array_equal(frame.path, pixels[:, :, 4])
 
 
+def test_first_hit_aovs_equal_the_exr_channels_of_those_names(engine, backend, tmp_path):
+    exr = tmp_path / "cli.exr"
+    run_cli("render", MIRROR, "-b", backend, "-o", exr, "--width", 32, "--height", 24, "--aov", "depth,normal,albedo")
+    pixels, channels = prism.read_image(exr)
+    frame = engine.renderer(engine.load_scene(MIRROR), backend).render(width=32, height=24,
+                                                                       aovs=("depth", "normal", "albedo"))
+    assert frame.id is None and frame.path is None
+    assert frame.depth.shape == (24, 32) and frame.normal.shape == frame.albedo.shape == (24, 32, 3)
+    channel = {name: pixels[:, :, k] for k, name in enumerate(channels)}
+    assert np.array_equal(frame.depth, channel["Z"])
+    for k, axis in enumerate("XYZ"):
+        assert np.array_equal(frame.normal[:, :, k], channel["N." + axis])
+    for k, colour in enumerate("RGB"):
+        assert np.array_equal(frame.albedo[:, :, k], channel["albedo." + colour])
+
+
 def test_render_without_aovs_uses_the_scene_settings(engine):
     scene = engine.load_scene(SHOWCASE)
     scene.set_image(prism.ImageSettings(width=20, height=10, spp=1))
@@ -41,8 +57,8 @@ def test_render_rejects_bad_overrides_and_aovs(engine):
     renderer = engine.renderer(engine.load_scene(SHOWCASE), "reference")
     with pytest.raises(ValueError, match=r"^render\(\)\.width: must be in \[1, 16384\], got 0$"):
         renderer.render(width=0)
-    with pytest.raises(ValueError, match=r"aovs: unknown channel 'depth' \(expected id or path\)"):
-        renderer.render(aovs=("depth",))
+    with pytest.raises(ValueError, match=r"aovs: unknown channel 'roughness' \(expected id, path, depth, normal or albedo\)"):
+        renderer.render(aovs=("roughness",))
 
 
 def test_unknown_backend_is_a_value_error(engine):

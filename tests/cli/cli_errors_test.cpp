@@ -250,11 +250,14 @@ TEST_F(CommandLineErrors, OutputIsAFolder) {
   EXPECT_TRUE(fs::is_empty(path("out.png")));
 }
 
-TEST_F(CommandLineErrors, AovNeedsExr) { expect_rejected(render({"--aov", "id"}), {"--aov", "exr"}); }
+TEST_F(CommandLineErrors, AovNeedsExr) {
+  expect_rejected(render({"--aov", "id"}), {"--aov", "exr"});
+  expect_rejected(render({"--aov", "depth", "normal", "albedo"}), {"--aov", "exr"});
+}
 
 TEST_F(CommandLineErrors, UnknownAov) {
-  expect_rejected({"render", scene_, "-b", "reference", "-o", path("out.exr").string(), "--aov", "id,depth"},
-                  {"depth"});
+  expect_rejected({"render", scene_, "-b", "reference", "-o", path("out.exr").string(), "--aov", "id,roughness"},
+                  {"roughness"});
 }
 
 TEST_F(CommandLineErrors, DigitsOutOfRange) {

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
@@ -412,6 +413,42 @@ TEST_F(Render, ExrWithAovs) {
         ASSERT_TRUE(std::isfinite(p) && p == std::floor(p)) << "path at " << x << "," << y << " is " << p;
       }
     EXPECT_NE(pixel_at(*image, 0, 0, 4), pixel_at(*image, kW / 2, kH / 2, 4));
+    outputs.push_back(exr);
+  }
+  std::sort(outputs.begin(), outputs.end());
+  EXPECT_EQ(list_folder(dir()), outputs);
+}
+
+// --aov depth normal albedo (space-separated here, comma-separated above):
+// the camera at (0,0,-5) looks at the unit sphere, so the centre pixel
+// (16, 12: its ray is exactly (0,0,1)) meets it at (0,0,-1): Z = 4, N =
+// (0,0,-1), albedo the default material's 0.8; a top corner misses: Z = inf,
+// N and albedo 0.
+TEST_F(Render, ExrWithFirstHitAovs) {
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  std::vector<std::string> outputs = {"scene.json"};
+  for (const auto& backend : backends_to_test()) {
+    SCOPED_TRACE("backend " + backend);
+    const std::string exr = backend + ".exr";
+    RunResult r = run({"render", scene_, "-b", backend, "-o", path(exr).string(), "--width", std::to_string(kW),
+                       "--height", std::to_string(kH), "--aov", "depth", "normal", "albedo"});
+    if (cannot_run_here(r, backend)) continue;
+    ASSERT_TRUE(ExitedWith(r, 0));
+    auto image = read_image(path(exr));
+    ASSERT_TRUE(image);
+    // A reader may list the channels in its own order: look them up by name.
+    const std::vector<std::string> names = {"Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G", "albedo.B"};
+    std::vector<std::string> sorted = image->channel_names;
+    std::sort(sorted.begin(), sorted.end());
+    ASSERT_EQ(sorted, (std::vector<std::string>{"B", "G", "N.X", "N.Y", "N.Z", "R", "Z", "albedo.B", "albedo.G",
+                                                "albedo.R"}));
+    const std::vector<float> centre = {4, 0, 0, -1, 0.8f, 0.8f, 0.8f}, miss = {kInf, 0, 0, 0, 0, 0, 0};
+    for (size_t k = 0; k < names.size(); ++k) {
+      const int c = int(std::find(image->channel_names.begin(), image->channel_names.end(), names[k]) -
+                        image->channel_names.begin());
+      EXPECT_NEAR(pixel_at(*image, kW / 2, kH / 2, c), centre[k], 1e-5) << names[k];
+      EXPECT_EQ(pixel_at(*image, 0, 0, c), miss[k]) << names[k];
+    }
     outputs.push_back(exr);
   }
   std::sort(outputs.begin(), outputs.end());

@@ -55,7 +55,10 @@ std::vector<std::string> lines(const std::string& text) {
 
 // A gradient, so every pixel of the reference differs from its neighbours.
 Image reference_image() {
-  Image image{kWidth, kHeight, std::vector<float>(kWidth * kHeight * 3), {}, {}};
+  Image image;
+  image.width = kWidth;
+  image.height = kHeight;
+  image.rgb.assign(kWidth * kHeight * 3, 0.0f);
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
       float* p = &image.rgb[(y * kWidth + x) * 3];
@@ -146,8 +149,11 @@ RunResult synthetic_run() {
 constexpr size_t kImagesInReport = 2 * (1 + 2 + 2);
 
 Image one_row(std::vector<float> rgb) {
-  const int width = int(rgb.size() / 3);
-  return Image{width, 1, std::move(rgb), {}, {}};
+  Image image;
+  image.width = int(rgb.size() / 3);
+  image.height = 1;
+  image.rgb = std::move(rgb);
+  return image;
 }
 
 void expect_pixel(const Image& image, int x, float r, float g, float b) {

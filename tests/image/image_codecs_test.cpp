@@ -153,6 +153,25 @@ TEST_F(ImageCodecs, RenderedExrReadsBackThroughOpenImageIO) {
   EXPECT_EQ(read.pixels, (std::vector<float>{0.25f, -1.5f, 1e6f, 7, 123456, 3.0f, 0.125f, 0.0f, -1, 0}));
 }
 
+// The first-hit AOVs after id and path, named as OpenEXR tools expect
+// (Z; layers N and albedo), read back in OpenImageIO's order (by layer,
+// R G B ... Z first).
+TEST_F(ImageCodecs, RenderedExrHoldsTheFirstHitAovs) {
+  Image image;
+  image.width = 1;
+  image.height = 1;
+  image.rgb = {0.5f, 0.25f, 0.125f};
+  image.depth = {4.5f};
+  image.normal = {0.6f, 0.0f, -0.8f};
+  image.albedo = {0.9f, 0.6f, 0.3f};
+  const fs::path file = dir_ / "out.exr";
+  write_image(image, file);
+  const OiioImage read = read_with_oiio(file);
+  EXPECT_EQ(read.names, (std::vector<std::string>{"R", "G", "B", "Z", "N.X", "N.Y", "N.Z", "albedo.R", "albedo.G",
+                                                  "albedo.B"}));
+  EXPECT_EQ(read.pixels, (std::vector<float>{0.5f, 0.25f, 0.125f, 4.5f, 0.6f, 0.0f, -0.8f, 0.9f, 0.6f, 0.3f}));
+}
+
 // RGBE by hand: (1, 0.5, 0.25) has the largest 1 = 0.5 * 2^1, mantissas
 // 256 * 0.5 * (1, 0.5, 0.25) = 128, 64, 32 and exponent 1 + 128; (3, -1,
 // 0.75): 3 = 0.75 * 2^2, scale 256 * 0.75 / 3 = 64, so 192, 0 (negative), 48

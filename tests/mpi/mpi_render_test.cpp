@@ -43,7 +43,7 @@ std::vector<std::string> mpirun(int ranks) {
 // Render arguments after `prism`: small, 2 spp, every channel in the EXR.
 std::vector<std::string> render_args(const std::string& backend, const fs::path& out) {
   return {prism().string(), "render", scene().string(), "-b", backend, "-o", out.string(),
-          "--width", "80", "--height", "45", "--spp", "2", "--aov", "id,path"};
+          "--width", "80", "--height", "45", "--spp", "2", "--aov", "id,path,depth,normal,albedo"};
 }
 
 std::vector<std::string> operator+(std::vector<std::string> a, const std::vector<std::string>& b) {
@@ -51,7 +51,7 @@ std::vector<std::string> operator+(std::vector<std::string> a, const std::vector
   return a;
 }
 
-// Channel values (RGB, id, path) that differ in their bits.
+// Channel values (RGB and every AOV) that differ in their bits.
 size_t differing(const fs::path& a, const fs::path& b) {
   const ImageFile x = read_image_file(a), y = read_image_file(b);
   if (x.width != y.width || x.height != y.height || x.channels != y.channels) return size_t(-1);

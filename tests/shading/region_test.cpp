@@ -22,6 +22,7 @@ TEST_P(RegionTest, ARegionIsTheSamePixelsAsTheWholeImage) {
   whole.image.spp = 2;
   whole.aov_id = true;
   whole.aov_path = true;
+  whole.aov_depth = whole.aov_normal = whole.aov_albedo = true;
   const Image full = render(scene, whole);
   // Odd offsets and sizes: no tile or work-group boundary lines up.
   RenderSettings part = whole;
@@ -36,6 +37,9 @@ TEST_P(RegionTest, ARegionIsTheSamePixelsAsTheWholeImage) {
       differing += std::memcmp(&tile.rgb[t * 3], &full.rgb[f * 3], 3 * sizeof(float)) != 0;
       differing += tile.id[t] != full.id[f];
       differing += std::memcmp(&tile.path[t], &full.path[f], sizeof(float)) != 0;
+      differing += std::memcmp(&tile.depth[t], &full.depth[f], sizeof(float)) != 0;
+      differing += std::memcmp(&tile.normal[t * 3], &full.normal[f * 3], 3 * sizeof(float)) != 0;
+      differing += std::memcmp(&tile.albedo[t * 3], &full.albedo[f * 3], 3 * sizeof(float)) != 0;
     }
   EXPECT_EQ(differing, 0u);
 }

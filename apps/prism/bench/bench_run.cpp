@@ -39,7 +39,9 @@ int64_t status_field_bytes(const char* field) {
 
 int64_t frame_bytes(const RenderSettings& settings) {
   const int64_t pixels = int64_t(settings.image.width) * settings.image.height;
-  return pixels * int64_t(sizeof(float)) * (3 + (settings.aov_id ? 1 : 0) + (settings.aov_path ? 1 : 0));
+  const int64_t aovs = (settings.aov_id ? 1 : 0) + (settings.aov_path ? 1 : 0) + (settings.aov_depth ? 1 : 0) +
+                       (settings.aov_normal ? 3 : 0) + (settings.aov_albedo ? 3 : 0);
+  return pixels * int64_t(sizeof(float)) * (3 + aovs);
 }
 
 // Largest absolute difference between two frames' rgb (0: bit-identical).

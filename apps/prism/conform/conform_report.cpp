@@ -927,7 +927,10 @@ std::string report_html(const RunResult& run) {
 Image heat_map(const Image& reference, const Image& image, float threshold) {
   if (!same_size(reference, image) || !has_pixels(reference) || !has_pixels(image))
     throw std::invalid_argument("heat_map: the images must have pixels and the same size");
-  Image map{image.width, image.height, std::vector<float>(image.rgb.size()), {}, {}};
+  Image map;
+  map.width = image.width;
+  map.height = image.height;
+  map.rgb.assign(image.rgb.size(), 0.0f);
   for (size_t p = 0; p < map.rgb.size(); p += 3) {
     // The ramp is designed in display colours; the PNG writer encodes linear
     // values to sRGB, so decode here to land on the designed colours.

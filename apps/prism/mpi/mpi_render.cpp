@@ -154,6 +154,9 @@ std::string serialize(const Bundle& b) {
   w.pod(b.settings.image);
   w.pod(uint8_t(b.settings.aov_id));
   w.pod(uint8_t(b.settings.aov_path));
+  w.pod(uint8_t(b.settings.aov_depth));
+  w.pod(uint8_t(b.settings.aov_normal));
+  w.pod(uint8_t(b.settings.aov_albedo));
   w.array(b.cameras);
   return std::move(w.bytes());
 }
@@ -171,6 +174,9 @@ Bundle deserialize(const std::string& bytes) {
   b.settings.image = r.pod<ImageSettings>();
   b.settings.aov_id = r.pod<uint8_t>() != 0;
   b.settings.aov_path = r.pod<uint8_t>() != 0;
+  b.settings.aov_depth = r.pod<uint8_t>() != 0;
+  b.settings.aov_normal = r.pod<uint8_t>() != 0;
+  b.settings.aov_albedo = r.pod<uint8_t>() != 0;
   b.cameras = r.array<Camera>();
   return b;
 }
@@ -229,22 +235,37 @@ std::string result_bytes(const Unit& unit, const Image& tile) {
   w.array(tile.rgb);
   w.array(tile.id);
   w.array(tile.path);
+  w.array(tile.depth);
+  w.array(tile.normal);
+  w.array(tile.albedo);
   return std::move(w.bytes());
+}
+
+// Copies the rows of a tile's channel (`per_pixel` floats a pixel; empty:
+// not asked for) into the frame's.
+void copy_tile_channel(const std::vector<float>& tile, std::vector<float>& frame, const PixelRect& t, int frame_width,
+                       size_t per_pixel) {
+  if (tile.empty()) return;
+  for (int row = 0; row < t.height; ++row) {
+    const size_t from = size_t(row) * size_t(t.width), to = size_t(t.y + row) * size_t(frame_width) + size_t(t.x);
+    std::copy_n(tile.begin() + std::ptrdiff_t(from * per_pixel), size_t(t.width) * per_pixel,
+                frame.begin() + std::ptrdiff_t(to * per_pixel));
+  }
 }
 
 // Copies a tile into its frame; returns the pixels it covered.
 size_t store_result(const std::string& bytes, std::vector<Image>& frames) {
   Reader r(bytes);
   const Unit unit = r.pod<Unit>();
-  const std::vector<float> rgb = r.array<float>(), id = r.array<float>(), path = r.array<float>();
   Image& image = frames.at(size_t(unit.frame));
   const PixelRect& t = unit.rect;
-  for (int row = 0; row < t.height; ++row) {
-    const size_t from = size_t(row) * size_t(t.width), to = size_t(t.y + row) * size_t(image.width) + size_t(t.x);
-    std::copy_n(rgb.begin() + std::ptrdiff_t(from * 3), size_t(t.width) * 3, image.rgb.begin() + std::ptrdiff_t(to * 3));
-    if (!id.empty()) std::copy_n(id.begin() + std::ptrdiff_t(from), t.width, image.id.begin() + std::ptrdiff_t(to));
-    if (!path.empty()) std::copy_n(path.begin() + std::ptrdiff_t(from), t.width, image.path.begin() + std::ptrdiff_t(to));
-  }
+  // In result_bytes' order.
+  copy_tile_channel(r.array<float>(), image.rgb, t, image.width, 3);
+  copy_tile_channel(r.array<float>(), image.id, t, image.width, 1);
+  copy_tile_channel(r.array<float>(), image.path, t, image.width, 1);
+  copy_tile_channel(r.array<float>(), image.depth, t, image.width, 1);
+  copy_tile_channel(r.array<float>(), image.normal, t, image.width, 3);
+  copy_tile_channel(r.array<float>(), image.albedo, t, image.width, 3);
   return size_t(t.width) * size_t(t.height);
 }
 
@@ -252,10 +273,8 @@ Image blank(const RenderSettings& settings) {
   Image image;
   image.width = settings.image.width;
   image.height = settings.image.height;
-  const size_t pixels = size_t(image.width) * size_t(image.height);
-  image.rgb.assign(pixels * 3, 0.0f);
-  if (settings.aov_id) image.id.assign(pixels, -1.0f);
-  if (settings.aov_path) image.path.assign(pixels, 0.0f);
+  image.rgb.assign(size_t(image.width) * size_t(image.height) * 3, 0.0f);
+  assign_aovs(image, settings);
   return image;
 }
 

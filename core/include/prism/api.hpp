@@ -222,11 +222,15 @@ struct UpdateCounters {
 };
 
 // What one render may change from the scene's image settings, and the AOVs
-// it adds to the Image (as `prism render --aov id,path` writes them).
+// it adds to the Image (as `prism render --aov id,path,depth,normal,albedo`
+// writes them).
 struct RenderOptions {
   std::optional<int> width, height, spp, max_depth;  // unset: the scene's
   bool aov_id = false;    // Image::id: the object seen in each pixel
   bool aov_path = false;  // Image::path: each pixel's path signature (sample 0)
+  bool aov_depth = false;   // Image::depth: sample 0's first-hit t (+inf: a miss)
+  bool aov_normal = false;  // Image::normal: its outward unit normal (0: a miss)
+  bool aov_albedo = false;  // Image::albedo: its surface colour (0: a miss)
 };
 
 // One backend, prepared for one scene at a time. Each render brings the

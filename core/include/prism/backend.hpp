@@ -16,6 +16,7 @@
 #include <cstdio>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -47,6 +48,11 @@ struct RenderSettings {
   std::optional<Camera> camera;
   bool aov_id = false;
   bool aov_path = false;
+  // Sample 0's first hit (docs/scene-format.md, "Output files and image
+  // channels"): its t, its outward normal, its surface colour.
+  bool aov_depth = false;
+  bool aov_normal = false;
+  bool aov_albedo = false;
   // Called with the fraction done (0..1) from any thread; may be empty.
   std::function<void(double)> progress;
   // Time the phases of the frame (backends that can: BackendStats::ms
@@ -62,6 +68,9 @@ struct Image {
   std::vector<float> rgb;   // width * height * 3
   std::vector<float> id;    // width * height when aov_id, else empty
   std::vector<float> path;  // width * height when aov_path, else empty
+  std::vector<float> depth;   // width * height when aov_depth (+inf on a miss), else empty
+  std::vector<float> normal;  // width * height * 3 when aov_normal (0 on a miss), else empty
+  std::vector<float> albedo;  // width * height * 3 when aov_albedo (0 on a miss), else empty
 };
 
 struct TraceQuery {
@@ -106,6 +115,18 @@ struct SceneChanges {
 // The pixels a render covers: the region, or the whole image.
 inline PixelRect render_rect(const RenderSettings& settings) {
   return settings.region.value_or(PixelRect{0, 0, settings.image.width, settings.image.height});
+}
+
+// Sizes the AOV channels `settings` asks for to `image`'s pixels, each with
+// its value for a pixel no ray reached: id -1, path 0, depth +inf, normal
+// and albedo 0.
+inline void assign_aovs(Image& image, const RenderSettings& settings) {
+  const size_t n = size_t(image.width) * size_t(image.height);
+  if (settings.aov_id) image.id.assign(n, -1.0f);
+  if (settings.aov_path) image.path.assign(n, 0.0f);
+  if (settings.aov_depth) image.depth.assign(n, std::numeric_limits<float>::infinity());
+  if (settings.aov_normal) image.normal.assign(n * 3, 0.0f);
+  if (settings.aov_albedo) image.albedo.assign(n * 3, 0.0f);
 }
 
 // InputError unless the region lies inside the image and is not empty.
