@@ -139,9 +139,8 @@ std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
       const SurfacePoint surface = surface_of(scene.objects[size_t(hit.id)], ray, hit.prim);
       r.t = surface.t;
       r.normal = surface.normal;
-    } else if (hit.found()) {  // a light sphere: its outward normal at the hit
-      const Light& light = scene.lights[size_t(-2 - hit.id)];
-      r.normal = glm::normalize(ray.origin + hit.t * ray.dir - light.position);
+    } else if (hit.found()) {
+      r.normal = light_sphere_normal(scene, ray, hit);
     }
   }
   throw_if_cancelled();  // a plugin fault in the last rays (request_stop_for_fault)

@@ -97,10 +97,9 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
 
 // The first-hit AOVs of a camera ray that meets light `-2 - hit.id`'s sphere.
 void Shader::note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const {
-  const Light& light = scene_.lights[size_t(-2 - hit.id)];
   result.first_t = hit.t;
-  result.first_normal = glm::normalize(ray.origin + hit.t * ray.dir - light.position);
-  result.first_albedo = light.color;
+  result.first_normal = light_sphere_normal(scene_, ray, hit);
+  result.first_albedo = scene_.lights[size_t(-2 - hit.id)].color;
 }
 
 void Shader::note(uint32_t value) {
@@ -196,7 +195,7 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
     }
     Surface s = surface_at(ray, hit);
     if (depth == 1) {
-      result.first_t = hit.t;
+      result.first_t = s.t;  // polished where ill-conditioned, as `prism trace` reports it
       result.first_normal = s.outward;
       result.first_albedo = s.color;
     }

@@ -123,4 +123,11 @@ bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s);
 // Closest light sphere with tmin < t <= tmax (ties: lower light index).
 Hit intersect_light_spheres(const Scene& scene, const Ray& ray, double tmin, double tmax);
 
+// The outward unit normal of the light sphere that `hit` (found by
+// intersect_light_spheres for `ray`) lies on.
+inline glm::dvec3 light_sphere_normal(const Scene& scene, const Ray& ray, const Hit& hit) {
+  const Light& light = scene.lights[size_t(-2 - hit.id)];
+  return glm::normalize(ray.origin + hit.t * ray.dir - light.position);
+}
+
 }  // namespace prism
