@@ -80,6 +80,7 @@ class EmbreeBackend final : public Backend {
   Image render(const RenderSettings& settings) override {
     require_prepared();
     const uint64_t before = stats_.rays;
+    query_->prepare_views((settings.camera ? *settings.camera : scene_->camera).position);
     Image image = render_cpu(*scene_, *query_, settings, stats_);
     last_frame_rays_ = stats_.rays - before;
     device_.check("rendering");

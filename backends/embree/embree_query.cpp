@@ -78,6 +78,8 @@ constexpr double kRelativePad = 4e-6;  // of S
 constexpr double kAbsolutePad = 0x1p-40;  // of M
 constexpr double kOutlierRatio = 1e3;  // size > 1000 x the median object size
 constexpr size_t kMaxOutliers = 8;
+// Light buffers pay while their lists are short: up to this many bounded objects.
+constexpr size_t kMaxViewObjects = 64;
 
 // The per-query state the callbacks read. Embree hands back the address of
 // `rtc`, the first member of this standard-layout struct.
@@ -367,6 +369,97 @@ int32_t EmbreeQuery::occluder(const Ray& ray, double tmax) const {
   RTCRay float_shadow_ray = float_ray(ray, frame_, ctx.shift, std::min(tmax, t1));
   rtcOccluded1(trace_scene(), &ctx.rtc, &float_shadow_ray);
   return ctx.blocker;
+}
+
+void EmbreeQuery::start_views() {
+  views_.reset();
+  views_tried_ = true;
+  const auto& objects = scene_.objects;
+  if (objects.size() > kMaxViewObjects + 16) return;  // too many for buffers, whatever their kinds
+  Views views;
+  double largest = 0;  // |coordinate| over every bounded object and light
+  std::vector<double> radii;
+  for (size_t id = 0; id < objects.size(); ++id) {
+    if (kinds_[id] == Kind::kUnbounded) {
+      views.unbounded.push_back(int32_t(id));
+      continue;
+    }
+    const Box3& box = objects[id].world_bounds;
+    views.spheres.push_back(sphere_around(box.lo, box.hi, int32_t(id)));
+    radii.push_back(views.spheres.back().radius);
+    largest = std::max({largest, max_abs(box.lo), max_abs(box.hi)});
+  }
+  if (views.spheres.empty() || views.spheres.size() > kMaxViewObjects) return;
+  for (const Light& light : scene_.lights) largest = std::max(largest, max_abs(light.position));
+  auto middle = radii.begin() + std::ptrdiff_t(radii.size() / 2);
+  std::nth_element(radii.begin(), middle, radii.end());
+  // A shadow ray ends within its offset (1e-4 (1 + |P|), the format's) of
+  // its light: room for hit points out to ~10x the scene's extent, or a
+  // twentieth of a median object, whichever is larger.
+  views.light_reach = std::max(1e-3 * (1 + largest), 0.05 * *middle);
+  views_ = std::move(views);
+}
+
+void EmbreeQuery::prepare_views(const glm::dvec3& eye) {
+  if (!views_tried_) start_views();
+  if (!views_) return;
+  Views& v = *views_;
+  if (!v.camera || v.eye != eye) {
+    v.eye = eye;
+    v.camera.emplace(eye, v.spheres, 0.0);  // camera rays start at the eye itself
+  }
+  const auto& lights = scene_.lights;
+  const bool same = v.lights.size() == lights.size() &&
+                    std::ranges::equal(v.lights, lights, [](const Light& a, const Light& b) {
+                      return a.type == b.type && a.position == b.position && a.direction == b.direction;
+                    });
+  if (same) return;
+  v.lights = lights;
+  v.points.assign(lights.size(), std::nullopt);
+  v.parallels.assign(lights.size(), std::nullopt);
+  for (size_t k = 0; k < lights.size(); ++k) {
+    if (lights[k].type == Light::Type::Point)
+      v.points[k].emplace(lights[k].position, v.spheres, v.light_reach);
+    else
+      v.parallels[k].emplace(-lights[k].direction, v.spheres, v.light_reach);
+  }
+}
+
+Hit EmbreeQuery::camera_closest(const Ray& ray) const {
+  const bool buffered = views_ && views_->camera && ray.origin == views_->eye && std::isfinite(max_abs(ray.dir));
+  if (!buffered) return closest(ray, 0.0);
+  QueryContext ctx;
+  ctx.ray = &ray;
+  for (int32_t id : views_->unbounded) consider(ctx, scene_.objects[id], id);
+  for (int32_t id : views_->camera->candidates(ray.dir)) consider(ctx, scene_.objects[id], id);
+  return ctx.best;
+}
+
+bool EmbreeQuery::light_candidates(size_t light, const Ray& ray, double tmax, std::span<const int32_t>& out) const {
+  if (!views_ || light >= views_->lights.size()) return false;
+  if (const auto& point = views_->points[light]) {
+    // Where the ray ends, against the light (embree_view_buffers.cpp, "Reach").
+    const glm::dvec3 end = ray.origin + tmax * ray.dir;
+    const double rounding = 0x1p-48 * (max_abs(ray.origin) + tmax + max_abs(point->apex()));
+    if (!(glm::length(end - point->apex()) + rounding <= point->reach())) return false;
+    out = point->candidates(-ray.dir);
+    return true;
+  }
+  const auto& parallel = views_->parallels[light];
+  if (!parallel || ray.dir != parallel->dir() || !parallel->covers(ray.origin)) return false;
+  out = parallel->candidates(ray.origin);
+  return true;
+}
+
+int32_t EmbreeQuery::light_occluder(size_t light, const Ray& ray, double tmax) const {
+  std::span<const int32_t> candidates;
+  if (!light_candidates(light, ray, tmax, candidates)) return occluder(ray, tmax);
+  if (!(tmax > 0.0)) return kMissId;
+  for (int32_t id : views_->unbounded)
+    if (blocks(scene_.objects[id], ray, tmax)) return id;
+  for (int32_t id : candidates)
+    if (blocks(scene_.objects[id], ray, tmax)) return id;
+  return kMissId;
 }
 
 }  // namespace prism::embree

@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include <glm/glm.hpp>
 
 #include "embree_device.hpp"
+#include "embree_view_buffers.hpp"
 #include "prism/cpu_render.hpp"
 
 namespace prism::embree {
@@ -45,6 +47,17 @@ class EmbreeQuery final : public ObjectQuery {
 
   Hit closest(const Ray& ray, double tmin) const override;
   int32_t occluder(const Ray& ray, double tmax) const override;
+
+  // Builds the light buffers of a frame seen from `eye` (embree_view_buffers.hpp)
+  // where the scene is small enough for them, reusing those whose camera,
+  // light and objects are unchanged. Call before rendering, not during it.
+  void prepare_views(const glm::dvec3& eye);
+  // Answered from those buffers where they apply, else by closest() and
+  // occluder(); the answers are the same either way.
+  Hit camera_closest(const Ray& ray) const override;
+  int32_t light_occluder(size_t light, const Ray& ray, double tmax) const override;
+  // Whether light buffers are in use (for tests and --stats).
+  bool has_views() const { return views_.has_value(); }
 
   // Brings the BVH up to date after the objects `changed` (ids) were edited
   // in place in the scene, layering the moved ones over the main tree
@@ -103,8 +116,26 @@ class EmbreeQuery final : public ObjectQuery {
   };
   void start_layers();
 
+  // The light buffers of the last prepare_views() and what they were built for.
+  struct Views {
+    std::vector<BoundSphere> spheres;  // every bounded object
+    std::vector<int32_t> unbounded;    // tested for every ray
+    double light_reach = 0;            // how far a shadow ray may end from its point light
+    glm::dvec3 eye{0};
+    std::optional<PointBuffer> camera;
+    std::vector<Light> lights;                         // as the buffers below were built
+    std::vector<std::optional<PointBuffer>> points;    // by light: point lights
+    std::vector<std::optional<ParallelBuffer>> parallels;  // by light: directional lights
+  };
+  void start_views();
+  // The objects a shadow ray toward `light` may meet besides the unbounded
+  // ones, or false where no buffer applies to the ray.
+  bool light_candidates(size_t light, const Ray& ray, double tmax, std::span<const int32_t>& out) const;
+
   const Scene& scene_;
   Device& device_;
+  std::optional<Views> views_;  // empty when there are too many objects for buffers
+  bool views_tried_ = false;    // views_ is up to date with the objects
   Frame frame_;
   std::vector<int32_t> bvh_ids_;    // ascending
   std::vector<int32_t> brute_ids_;  // ascending: unbounded objects and outliers

@@ -59,6 +59,7 @@ void EmbreeQuery::start_layers() {
 
 UpdateResult EmbreeQuery::update(std::span<const uint32_t> changed, bool may_layer) {
   const auto& objects = scene_.objects;
+  views_tried_ = false;  // edited objects: their spheres (outliers' too) are built again by prepare_views
   if (objects.size() != kinds_.size()) return UpdateResult::kNeedsBuild;
   std::vector<int32_t> moving;  // BVH objects whose box changed
   for (uint32_t index : changed) {

@@ -61,15 +61,16 @@ struct Shader::Surface {
   Ray spawn(const glm::dvec3& dir, double side) const { return {position + side * epsilon * n, dir}; }
 };
 
-Hit Shader::closest(const Ray& ray, double tmin) const {
-  Hit hit = query_.closest(ray, tmin);
+Hit Shader::with_light_spheres(const Hit& hit, const Ray& ray, double tmin) const {
   Hit light = intersect_light_spheres(scene_, ray, tmin, hit.t);
   return light.t < hit.t ? light : hit;  // equal t: the object wins
 }
 
+Hit Shader::closest(const Ray& ray, double tmin) const { return with_light_spheres(query_.closest(ray, tmin), ray, tmin); }
+
 Hit Shader::closest_in_phase(const Ray& ray, Phase phase) const {
   PhaseScope scope(profile_, phase);
-  return closest(ray, 0.0);
+  return with_light_spheres(phase == kPhaseCameraRays ? query_.camera_closest(ray) : query_.closest(ray, 0.0), ray, 0.0);
 }
 
 Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
@@ -118,7 +119,7 @@ bool Shader::shadowed(size_t light, const Ray& ray, double distance) {
   // the same either way (any blocking object will do).
   int32_t& last = last_blocker_[light];
   if (last != kMissId && blocks(scene_.objects[size_t(last)], ray, distance)) return true;
-  const int32_t blocker = query_.occluder(ray, distance);
+  const int32_t blocker = query_.light_occluder(light, ray, distance);
   if (blocker != kMissId) last = blocker;
   return blocker != kMissId;
 }

@@ -61,6 +61,8 @@ class Shader {
  private:
   struct Surface;  // shading data at one hit
   Surface surface_at(const Ray& ray, const Hit& hit) const;
+  Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin) const;
+  // The closest hit of a camera ray (kPhaseCameraRays) or of a secondary one.
   Hit closest_in_phase(const Ray& ray, Phase phase) const;
   void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
   glm::dvec3 local_light(const Surface& s, const glm::dvec3& dir);

@@ -19,6 +19,14 @@ class ObjectQuery {
   virtual Hit closest(const Ray& ray, double tmin) const = 0;
   // The id of an object hit with 0 < t < tmax (any one), or kMissId.
   virtual int32_t occluder(const Ray& ray, double tmax) const = 0;
+  // closest(ray, 0) for a camera ray, and occluder() for a shadow ray toward
+  // scene light `light`. A backend may answer these from data it prepared
+  // for the frame's camera and lights; the answers are the same.
+  virtual Hit camera_closest(const Ray& ray) const { return closest(ray, 0.0); }
+  virtual int32_t light_occluder(size_t light, const Ray& ray, double tmax) const {
+    (void)light;
+    return occluder(ray, tmax);
+  }
   // True when any object is hit with 0 < t < tmax.
   bool occluded(const Ray& ray, double tmax) const { return occluder(ray, tmax) != kMissId; }
 };
