@@ -30,7 +30,8 @@
 //    of the core circle plus r along the radial direction) and the normal is
 //    that radial direction, which is parallel to the spec's gradient.
 // 6. GPU: torus.glsl, the same steps in GLSL double precision, with the
-//    Newton-bisection of core/glsl/roots.glsl (solve_bracketed's port).
+//    Newton-bisection of the shared module `roots` (prism/sdk/shared/roots.shared.glsl),
+//    which solve_bracketed runs on the CPU too.
 #include <cmath>
 
 #include "prism/primitive_abi.h"

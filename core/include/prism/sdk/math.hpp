@@ -16,6 +16,9 @@
 
 #include "prism/sdk/library.hpp"
 
+#define PRISM_SHARED_SOURCE "prism/sdk/shared/roots.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
+
 namespace prism::sdk {
 
 inline constexpr double kPi = 3.14159265358979323846;
@@ -53,28 +56,16 @@ inline int solve_quadratic(double a, double b, double c, double& t0, double& t1)
 // derivative is 0 or NaN), so the result always lies in [a, b]. It stops
 // after a Newton step shorter than `tol` (which leaves an error ~tol^2) or
 // once the bracket itself is narrower than `tol`.
+// The steps are prism/sdk/shared/roots.shared.glsl's, which the GPU runs too.
 template <class Fn>
 double solve_bracketed(const Fn& fn, double a, double b, double fa, double fb, double tol) {
-  const bool a_positive = fa > 0.0;
-  double lo = a, hi = b;  // lo: fa's side, hi: the other
-  double s = a - fa * (b - a) / (fb - fa);
-  if (!(s > a && s < b)) s = 0.5 * (a + b);
-  for (int i = 0; i < 128; ++i) {
+  f64::PrismBracket bracket = f64::prism_bracket_start(a, b, fa, fb, tol);
+  for (int i = 0; i < PRISM_BRACKET_MAX_STEPS; ++i) {
     double f = 0.0, df = 0.0;
-    fn(s, f, df);
-    if (f == 0.0) return s;
-    ((f > 0.0) == a_positive ? lo : hi) = s;
-    double mn = std::min(lo, hi), mx = std::max(lo, hi);
-    double next = s - f / df;
-    if (next >= mn && next <= mx) {
-      if (std::abs(next - s) <= tol) return next;
-    } else {
-      next = 0.5 * (lo + hi);
-      if (mx - mn <= tol || next == mn || next == mx) return next;
-    }
-    s = next;
+    fn(bracket.s, f, df);
+    if (f64::prism_bracket_step(bracket, f, df)) break;
   }
-  return s;
+  return bracket.s;
 }
 
 // Unit vector along v without underflow or overflow of |v|^2.
