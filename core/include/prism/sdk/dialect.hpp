@@ -3,9 +3,9 @@
 // side), in double and in float.
 //
 // A primitive's intersector and the SDK maths it shares (`*.shared.glsl`:
-// prism/sdk/shared/library.shared.glsl, quadric.shared.glsl, and each
-// plugins/<type>/<type>.shared.glsl) are written once, in GLSL with these
-// words, which each language's prelude defines:
+// prism/sdk/shared/library.shared.glsl, quadric.shared.glsl,
+// roots.shared.glsl, and each plugins/<type>/<type>.shared.glsl) are written
+// once, in GLSL with these words, which each language's prelude defines:
 //
 //   real, real2, real3    the scalar and vector types: double/dvec3 in the
 //                         f64 instantiation, float/vec3 in f32
@@ -36,6 +36,12 @@
 //   #define PRISM_SHARED_SOURCE "sphere.shared.glsl"
 //   #include "prism/sdk/instantiate.hpp"
 //   ... f64::sphere_intersect(...), f32::sphere_intersect(...)
+//
+// GLSL has no `inline`, so the C++ instantiations get internal linkage (an
+// unnamed namespace) instead: each translation unit compiles its own copy of
+// the same text with the same flags, and the SDK's inline C++ wrappers
+// (solve_quadratic, intersect_sphere, ...) call the copy of the unit they
+// are inlined into.
 //
 // What can still differ between a CPU and a GPU compile of the same text:
 // - Built-ins the GLSL spec leaves loosely specified: sqrt, division and
