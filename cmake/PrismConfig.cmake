@@ -8,7 +8,7 @@
 # The Engine finds the installed plugins in <prefix>/lib/prism by itself.
 #
 # Primitive plugins built outside the tree:
-#   prism_add_primitive_plugin(<type> SOURCES ... [GLSL <file>])
+#   prism_add_primitive_plugin(<type> SOURCES ... [SHARED <file>.shared.glsl | GLSL <file>])
 # builds libprism_primitive_<type>.so into ${PRISM_PLUGIN_OUTPUT_DIR}
 # (default <build>/plugins) against Prism::sdk, the header-only plugin ABI
 # (prism/primitive_abi.h, prism/sdk/*.hpp; glm). Point PRISM_PLUGIN_PATH at

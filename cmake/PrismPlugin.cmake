@@ -1,5 +1,5 @@
 # Declaring plugins. A primitive plugin is one folder under plugins/ that calls
-#   prism_add_primitive_plugin(<type> SOURCES ... [GLSL <file>] [TESTS ...])
+#   prism_add_primitive_plugin(<type> SOURCES ... [SHARED <file> | GLSL <file>] [TESTS ...])
 # and builds libprism_primitive_<type>.so into the plugin folder, exactly as
 # a plugin outside the tree does against the installed package
 # (cmake/PrismPrimitivePlugin.cmake), plus its install rule and tests. The
@@ -8,13 +8,15 @@
 include(${CMAKE_CURRENT_LIST_DIR}/PrismPrimitivePlugin.cmake)
 
 function(prism_add_primitive_plugin type)
-  cmake_parse_arguments(ARG "" "GLSL" "SOURCES;TESTS" ${ARGN})
+  cmake_parse_arguments(ARG "" "GLSL;SHARED" "SOURCES;TESTS" ${ARGN})
   set(objects prism_primitive_${type}_objects)
-  if(ARG_GLSL)
-    prism_primitive_plugin_library(${type} SDK prism_sdk SOURCES ${ARG_SOURCES} GLSL ${ARG_GLSL})
-  else()
-    prism_primitive_plugin_library(${type} SDK prism_sdk SOURCES ${ARG_SOURCES})
+  set(gpu_source "")
+  if(ARG_SHARED)
+    set(gpu_source SHARED ${ARG_SHARED})
+  elseif(ARG_GLSL)
+    set(gpu_source GLSL ${ARG_GLSL})
   endif()
+  prism_primitive_plugin_library(${type} SDK prism_sdk SOURCES ${ARG_SOURCES} ${gpu_source})
   install(TARGETS prism_primitive_${type} LIBRARY DESTINATION lib/prism)
   set_property(GLOBAL APPEND PROPERTY PRISM_PLUGIN_TARGETS prism_primitive_${type})
   if(PRISM_BUILD_TESTS AND ARG_TESTS)

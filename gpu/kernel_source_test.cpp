@@ -6,6 +6,7 @@
 
 #include "kernel_source.hpp"
 #include "prism/scene_loader.hpp"
+#include "prism/sdk/shared_source.hpp"
 
 namespace prism::gpu {
 namespace {
@@ -73,6 +74,23 @@ TEST(KernelSource, RenderKernelHasShadingSection) {
   Scene scene = load(registry, kSpheresOnly);
   KernelSource kernel = generate_kernel(pack_scene(scene), KernelOptions{});
   EXPECT_NE(kernel.text.find("===== gpu/shading.glsl"), std::string::npos);
+}
+
+// The one parser of `// prism:require` lines (kernel generator,
+// plugin_testing.hpp and scripts/check_plugin_glsl.sh all use it).
+TEST(RequiredModules, LinesOfTheirOwnInOrderEachOnce) {
+  const auto found = sdk::required_modules(
+      "// the quadric: see // prism:require roots in prose\n// prism:require quadric\n"
+      "//\n// prism:require roots  \r\n// prism:require quadric\nbool f();\n");
+  EXPECT_EQ(found.problem, "");
+  EXPECT_EQ(found.modules, (std::vector<std::string>{"quadric", "roots"}));
+}
+
+TEST(RequiredModules, AMalformedDirectiveIsAProblemNotAComment) {
+  for (const char* text : {"// prism:require\n", "// prism:require quad-ric\n", "// prism:requirequadric\n",
+                           "// prism:require quadric roots\n"})
+    EXPECT_NE(sdk::required_modules(text).problem, "") << text;
+  EXPECT_TRUE(sdk::required_modules("// prism:require quadric roots\n").modules.empty());
 }
 
 TEST(KernelSource, HashIsFnv1a64) {

@@ -1,9 +1,13 @@
 #!/usr/bin/env bash
-# Compiles every primitive plugin's GLSL (plugins/<type>/<type>.glsl) the way
-# the kernel generator assembles it: a header, core/glsl/library.glsl, each
-# core module the plugin asks for with `// prism:require <module>` (once),
-# the plugin's source, and a main() that calls <type>_intersect and
-# <type>_surface and stores their results (so nothing is dead-stripped).
+# Compiles every primitive plugin's GPU source the way the kernel generator
+# assembles it: a header, core/glsl/prelude.glsl (the shared dialect's GLSL
+# side), the library prism/sdk/shared/library.shared.glsl, each core module
+# the plugin asks for with `// prism:require <module>` (once; read by
+# prism-glsl-modules, the generator's own parser), the plugin's source, and a
+# main() that calls <type>_intersect and <type>_surface and stores their
+# results (so nothing is dead-stripped). The source is the plugin's one
+# source plugins/<type>/<type>.shared.glsl, compiled in double and in float
+# (PRISM_REAL_FLOAT), or a hand-written plugins/<type>/<type>.glsl (double).
 # Each shader is compiled for OpenGL (GLSL front end, and SPIR-V for OpenGL)
 # and for Vulkan (SPIR-V, checked with spirv-val when present); then all
 # plugins together in one shader, which catches name clashes between them.
@@ -13,14 +17,22 @@
 #
 #   scripts/check_plugin_glsl.sh [plugin ...]    (default: every plugin)
 #
-# Needs glslangValidator (Debian: glslang-tools). Exits non-zero on any failure.
+# Needs glslangValidator (Debian: glslang-tools) and prism-glsl-modules
+# ($PRISM_GLSL_MODULES, else build/bin/prism-glsl-modules). Exits non-zero on
+# any failure.
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 glsl_dir="$root/core/glsl"
+shared_dir="$root/core/include/prism/sdk/shared"
+modules_tool="${PRISM_GLSL_MODULES:-$root/build/bin/prism-glsl-modules}"
 
 if ! command -v glslangValidator >/dev/null; then
   echo "check_plugin_glsl: glslangValidator not found (apt-get install glslang-tools)" >&2
+  exit 1
+fi
+if [[ ! -x "$modules_tool" ]]; then
+  echo "check_plugin_glsl: $modules_tool not found (build the target prism-glsl-modules or set PRISM_GLSL_MODULES)" >&2
   exit 1
 fi
 have_spirv_val=0
@@ -33,9 +45,9 @@ if [[ $# -gt 0 ]]; then
   plugins=("$@")
 else
   plugins=()
-  for f in "$root"/plugins/*/*.glsl; do
-    name="$(basename "$f" .glsl)"
-    [[ "$(basename "$(dirname "$f")")" == "$name" ]] && plugins+=("$name")
+  for dir in "$root"/plugins/*/; do
+    name="$(basename "$dir")"
+    [[ -f "$dir/$name.shared.glsl" || -f "$dir/$name.glsl" ]] && plugins+=("$name")
   done
 fi
 
@@ -45,8 +57,23 @@ fail() {
   failures=$((failures + 1))
 }
 
-# Modules a source asks for, in order of appearance.
-required_modules() { sed -n 's|^// prism:require \([A-Za-z0-9_]*\)[[:space:]]*$|\1|p' "$1"; }
+# Modules a source asks for, in order of appearance (fails on a malformed line).
+required_modules() { "$modules_tool" "$1"; }
+
+# A plugin's GPU source: its one shared source, else a hand-written GLSL file.
+plugin_source() {
+  local p="$1"
+  if [[ -f "$root/plugins/$p/$p.shared.glsl" ]]; then
+    echo "$root/plugins/$p/$p.shared.glsl"
+  else
+    echo "$root/plugins/$p/$p.glsl"
+  fi
+}
+
+# Where core module $1 lives: a shared-dialect module or a GLSL-only one.
+module_file() {
+  if [[ -f "$shared_dir/$1.shared.glsl" ]]; then echo "$shared_dir/$1.shared.glsl"; else echo "$glsl_dir/$1.glsl"; fi
+}
 
 # Global names declared at column 0: #define NAME, struct NAME, and
 # `[const] TYPE NAME` followed by ( = ; or [.
@@ -67,9 +94,10 @@ check_names() {  # file prefix
   done < <(global_names "$file")
 }
 
-header() {
+header() {  # precision
+  echo '#version 450'
+  [[ "$1" == float ]] && echo '#define PRISM_REAL_FLOAT 1'
   cat <<'EOF'
-#version 450
 #define PRISM_BINDING_RECORDS 0
 layout(local_size_x = 1) in;
 EOF
@@ -82,43 +110,43 @@ main_calls() {  # prefix index
   {
     uint base = ${k}u * 20u;
     PrismRay ray;
-    ray.origin = dvec3(check_io[base + 0u], check_io[base + 1u], check_io[base + 2u]);
-    ray.dir = dvec3(check_io[base + 3u], check_io[base + 4u], check_io[base + 5u]);
+    ray.origin = real3(check_io[base + 0u], check_io[base + 1u], check_io[base + 2u]);
+    ray.dir = real3(check_io[base + 3u], check_io[base + 4u], check_io[base + 5u]);
     PrismHit hit;
-    bool found = ${p}_intersect(uint(check_io[base + 6u]), ray, check_io[base + 7u], check_io[base + 8u], hit);
+    bool found = ${p}_intersect(uint(check_io[base + 6u]), ray, real(check_io[base + 7u]), real(check_io[base + 8u]), hit);
     PrismSurface s;
     ${p}_surface(uint(check_io[base + 6u]), ray, hit, s);
-    check_io[base + 9u] = found ? hit.t : -1.0LF;
+    check_io[base + 9u] = found ? double(hit.t) : -1.0LF;
     check_io[base + 10u] = double(hit.part);
-    check_io[base + 11u] = s.point.x + s.point.y + s.point.z;
-    check_io[base + 12u] = s.normal.x + s.normal.y + s.normal.z;
-    check_io[base + 13u] = s.uv.x + s.uv.y + hit.data.x + hit.data.y + hit.data.z;
+    check_io[base + 11u] = double(s.point.x + s.point.y + s.point.z);
+    check_io[base + 12u] = double(s.normal.x + s.normal.y + s.normal.z);
+    check_io[base + 13u] = double(s.uv.x + s.uv.y + hit.data.x + hit.data.y + hit.data.z);
   }
 EOF
 }
 
-# Writes the shader for the given plugins to $1.
+# Writes the shader for the given plugins, in precision $2, to $1.
 assemble() {
-  local out="$1" p m
-  shift
+  local out="$1" precision="$2" p m
+  shift 2
   local -a modules=()
   for p in "$@"; do
     while read -r m; do
       [[ -z "$m" ]] && continue
       [[ " ${modules[*]-} " == *" $m "* ]] || modules+=("$m")
-    done < <(required_modules "$root/plugins/$p/$p.glsl")
+    done < <(required_modules "$(plugin_source "$p")")
   done
   {
-    header
-    cat "$glsl_dir/library.glsl"
+    header "$precision"
+    cat "$glsl_dir/prelude.glsl" "$shared_dir/library.shared.glsl"
     for m in ${modules[@]+"${modules[@]}"}; do
-      if [[ ! -f "$glsl_dir/$m.glsl" ]]; then
+      if [[ ! -f "$(module_file "$m")" ]]; then
         echo "#error missing core module $m"
       else
-        cat "$glsl_dir/$m.glsl"
+        cat "$(module_file "$m")"
       fi
     done
-    for p in "$@"; do cat "$root/plugins/$p/$p.glsl"; done
+    for p in "$@"; do cat "$(plugin_source "$p")"; done
     echo 'layout(std430, binding = 1) buffer CheckIo { double check_io[]; };'
     echo 'void main() {'
     local k=0
@@ -150,30 +178,44 @@ compile() {  # label shader
   fi
 }
 
-for m in "$glsl_dir"/*.glsl; do
-  [[ "$(basename "$m")" == library.glsl ]] && continue
+# The prelude defines the dialect's words (real, R, OUT...), not prism names.
+for m in "$glsl_dir"/*.glsl "$shared_dir"/*.shared.glsl; do
+  [[ "$(basename "$m")" == prelude.glsl ]] && continue
   check_names "$m" prism
 done
 
+# Only shared sources have a float instantiation.
+precisions_of() {
+  local p
+  for p in "$@"; do [[ -f "$root/plugins/$p/$p.shared.glsl" ]] || { echo double; return; }; done
+  echo double float
+}
+
 for p in "${plugins[@]}"; do
-  src="$root/plugins/$p/$p.glsl"
+  src="$(plugin_source "$p")"
   if [[ ! -f "$src" ]]; then
     fail "$p: no $src"
     continue
   fi
   before=$failures
   check_names "$src" "$p"
+  if ! modules="$(required_modules "$src")"; then
+    fail "$p: malformed prism:require line"
+    continue
+  fi
   while read -r m; do
-    [[ -z "$m" || -f "$glsl_dir/$m.glsl" ]] || fail "$p: requires missing module core/glsl/$m.glsl"
-  done < <(required_modules "$src")
-  assemble "$work/$p.comp" "$p"
-  compile "$p" "$work/$p.comp"
-  [[ $failures == "$before" ]] && echo "ok: $p"
+    [[ -z "$m" || -f "$(module_file "$m")" ]] || fail "$p: requires missing core module $m"
+  done <<<"$modules"
+  for precision in $(precisions_of "$p"); do
+    assemble "$work/$p.comp" "$precision" "$p"
+    compile "$p ($precision)" "$work/$p.comp"
+  done
+  [[ $failures == "$before" ]] && echo "ok: $p ($(precisions_of "$p"))"
 done
 
 if [[ ${#plugins[@]} -gt 1 ]]; then
   before=$failures
-  assemble "$work/all.comp" "${plugins[@]}"
+  assemble "$work/all.comp" double "${plugins[@]}"
   compile "all plugins together" "$work/all.comp"
   [[ $failures == "$before" ]] && echo "ok: all plugins in one shader (${plugins[*]})"
 fi

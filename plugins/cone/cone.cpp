@@ -7,18 +7,18 @@
 // Numerics: none of its own; see prism/sdk/axial_quadric.hpp. t and N are
 // bit-identical to those of the equivalent `quadric` object.
 //
-// GPU: cone.glsl runs the core module core/glsl/quadric.glsl, the GLSL
-// double port of that code shared with quadric and cylinder; the record
-// offsets the module reads are static_asserted below.
+// intersect and surface are written once, for the CPU and the GPU, in
+// cone.shared.glsl; this file holds fields, pack and the long-double refine.
 #include "prism/sdk/axial_quadric.hpp"
-#include "cone.glsl.hpp"
-#include "quadric.glsl.hpp"  // kQuadricModuleGlsl: core/glsl/quadric.glsl, which cone.glsl requires
+#include "prism/sdk/shared_plugin.hpp"
+#include "cone.shared.glsl.hpp"
+
+#define PRISM_SHARED_SOURCE "cone.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
 
 namespace {
 
 using namespace prism::sdk;
-
-static_assert(quadric_module_matches_records(kQuadricModuleGlsl));
 
 const PrismField kFields[] = {
     positive_length("radius", 1, "radius of the open end, at y = height"),
@@ -38,7 +38,8 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_axial_quadric_hit(-(slope * slope), 0, ray, hit);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric("cone", kFields, pack, refine, kPluginGlsl, "cone");
+const PrismPrimitiveDesc kDesc = describe_axial_quadric<f64::abi_intersect<f64::cone_intersect>, f64::abi_surface<f64::cone_surface>>(
+    "cone", kFields, pack, refine, kPluginGlsl, "cone");
 
 }  // namespace
 

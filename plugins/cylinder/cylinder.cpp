@@ -9,18 +9,18 @@
 // in that frame, one Newton step onto the surface. So t and N are
 // bit-identical to those of the equivalent `quadric` object.
 //
-// GPU: cylinder.glsl runs the core module core/glsl/quadric.glsl, the GLSL
-// double port of that code shared with quadric and cone; the record offsets
-// the module reads are static_asserted below.
+// intersect and surface are written once, for the CPU and the GPU, in
+// cylinder.shared.glsl; this file holds fields, pack and the long-double refine.
 #include "prism/sdk/axial_quadric.hpp"
-#include "cylinder.glsl.hpp"
-#include "quadric.glsl.hpp"  // kQuadricModuleGlsl: core/glsl/quadric.glsl, which cylinder.glsl requires
+#include "prism/sdk/shared_plugin.hpp"
+#include "cylinder.shared.glsl.hpp"
+
+#define PRISM_SHARED_SOURCE "cylinder.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
 
 namespace {
 
 using namespace prism::sdk;
-
-static_assert(quadric_module_matches_records(kQuadricModuleGlsl));
 
 const PrismField kFields[] = {
     positive_length("radius", 1, "radius of the open tube around the local y axis"),
@@ -38,7 +38,8 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_axial_quadric_hit(0, -(radius * radius), ray, hit);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric("cylinder", kFields, pack, refine, kPluginGlsl, "cylinder");
+const PrismPrimitiveDesc kDesc = describe_axial_quadric<f64::abi_intersect<f64::cylinder_intersect>, f64::abi_surface<f64::cylinder_surface>>(
+    "cylinder", kFields, pack, refine, kPluginGlsl, "cylinder");
 
 }  // namespace
 

@@ -2,24 +2,21 @@
 // TRANSFORMABLE: `point` and `normal` place it, so local == world and the
 // spec's uv, which uses world P, is computed here directly.
 //
-// Numerics
-// - intersect: t = dot(m, point - o) / dot(m, d) with m the unit normal. The
-//   subtraction point - o is the only cancellation and it is exact to one
-//   rounding, so t has relative error ~eps at any distance. A ray parallel
-//   to the plane (dot(m, d) == 0 exactly) misses; no epsilon band.
-// - surface: P = o + t d is pulled back onto the plane by removing its
-//   normal component (P -= dot(m, P - point) m), so the secondary-ray offset
-//   always starts from the right side; the tangential error (~eps |o|) only
-//   moves uv by that much.
-// - m is normalised with prism::sdk::safe_normalize, so a normal such as
-//   (1e-300, 0, 0), which passes the non-zero check, still works.
-// - GPU: plane.glsl, the same method in GLSL double precision.
+// intersect and surface are written once, for the CPU and the GPU, in
+// plane.shared.glsl (the numerics are described there); this file holds
+// fields, pack, bounds and the long-double refine. m is normalised with
+// prism::sdk::safe_normalize, so a normal such as (1e-300, 0, 0), which
+// passes the non-zero check, still works.
 #include <cmath>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
-#include "plane.glsl.hpp"
+#include "prism/sdk/shared_plugin.hpp"
+#include "plane.shared.glsl.hpp"
+
+#define PRISM_SHARED_SOURCE "plane.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
 
 namespace {
 
@@ -34,11 +31,11 @@ struct PlaneRecord {
   double given_normal[4];  // `normal` as the file gives it, for refine (the GPU ignores it)
 };
 static_assert(sizeof(PlaneRecord) % 16 == 0);
-static_assert(glsl_define(kPluginGlsl, "PLANE_POINT") == offsetof(PlaneRecord, point) / sizeof(double));
-static_assert(glsl_define(kPluginGlsl, "PLANE_UV_SCALE") == offsetof(PlaneRecord, point) / sizeof(double) + 3);
-static_assert(glsl_define(kPluginGlsl, "PLANE_NORMAL") == offsetof(PlaneRecord, normal) / sizeof(double));
-static_assert(glsl_define(kPluginGlsl, "PLANE_T1") == offsetof(PlaneRecord, t1) / sizeof(double));
-static_assert(glsl_define(kPluginGlsl, "PLANE_T2") == offsetof(PlaneRecord, t2) / sizeof(double));
+static_assert(PLANE_POINT == offsetof(PlaneRecord, point) / sizeof(double));
+static_assert(PLANE_UV_SCALE == offsetof(PlaneRecord, point) / sizeof(double) + 3);
+static_assert(PLANE_NORMAL == offsetof(PlaneRecord, normal) / sizeof(double));
+static_assert(PLANE_T1 == offsetof(PlaneRecord, t1) / sizeof(double));
+static_assert(PLANE_T2 == offsetof(PlaneRecord, t2) / sizeof(double));
 
 const double kDefaultUvScale[] = {1.0};
 
@@ -69,18 +66,6 @@ void pack(const double* values, void* record) {
 
 int bounds(const void*, double*, double*) { return 0; }  // infinite
 
-int intersect(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit) {
-  const auto& rec = record_of<PlaneRecord>(record);
-  glm::dvec3 m = load3(rec.normal), o = load3(ray->origin), d = load3(ray->dir);
-  double denom = glm::dot(m, d);
-  if (denom == 0.0) return 0;
-  double t = glm::dot(m, load3(rec.point) - o) / denom;
-  if (!(t > tmin && t <= tmax)) return 0;  // NaN rays fail here too
-  *hit = PrismHit{};
-  hit->t = t;
-  return 1;
-}
-
 // dot(normal, p - point) in long double with the normal as given (its
 // double normalisation would tilt the plane by an ulp; see prism/sdk/refine.hpp).
 void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
@@ -89,20 +74,9 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_hit(*ray, *hit, [&](const Vec3x& p) { return ImplicitSample{dot(normal, p - point), normal}; });
 }
 
-void surface(const void* record, const PrismRay* ray, const PrismHit* hit, PrismSurface* out) {
-  const auto& rec = record_of<PlaneRecord>(record);
-  glm::dvec3 m = load3(rec.normal), point = load3(rec.point);
-  glm::dvec3 p = load3(ray->origin) + hit->t * load3(ray->dir);
-  p -= glm::dot(m, p - point) * m;
-  double scale = rec.point[3];
-  double u = glm::dot(p - point, load3(rec.t1)) * scale;
-  double v = glm::dot(p - point, load3(rec.t2)) * scale;
-  write_surface(out, p, m, u, v);
-}
-
-const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("plane", 0, kFields,
-                                                       sizeof(PlaneRecord), validate_nothing, pack, bounds, surface,
-                                                       kPluginGlsl, "plane", refine);
+const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::plane_intersect>>(
+    "plane", 0, kFields, sizeof(PlaneRecord), validate_nothing, pack, bounds, f64::abi_surface<f64::plane_surface>,
+    kPluginGlsl, "plane", refine);
 
 }  // namespace
 

@@ -18,9 +18,9 @@
 //   one Newton step along the gradient in `surface`.
 // - clip_min/clip_max are coordinates (PRISM_FIELD_LENGTH): the core checks
 //   |x| <= 1e7 on the numbers only, and a null entry reads as -inf / +inf.
-// - GPU: quadric.glsl runs core/glsl/quadric.glsl, the GLSL double port of
-//   quadric_math.hpp that cylinder and cone run too (its record offsets are
-//   static_asserted there, against the same QuadricShape).
+// - intersect and surface are written once, for the CPU and the GPU, in
+//   quadric.shared.glsl, on the module prism/sdk/shared/quadric.shared.glsl
+//   that cylinder and cone run too.
 #include <algorithm>
 #include <cmath>
 
@@ -28,7 +28,11 @@
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
 #include "prism/sdk/quadric_math.hpp"
-#include "quadric.glsl.hpp"
+#include "prism/sdk/shared_plugin.hpp"
+#include "quadric.shared.glsl.hpp"
+
+#define PRISM_SHARED_SOURCE "quadric.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
 
 namespace {
 
@@ -87,16 +91,10 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return quadric_bounds(record_of<QuadricRecord>(record), lo, hi) ? 1 : 0;
 }
 
-void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
-  glm::dvec3 point, normal;
-  quadric_record_surface(record, hit, point, normal);
-  write_surface(out, point, normal, 0.0, 0.0);
-}
-
 const PrismPrimitiveDesc kDesc =
-    describe_primitive<intersect_quadric_record>("quadric", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                 sizeof(QuadricRecord), validate, pack, bounds, surface, kPluginGlsl,
-                                                 "quadric", refine_quadric_record);
+    describe_primitive<f64::abi_intersect<f64::quadric_intersect>>(
+        "quadric", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(QuadricRecord), validate, pack, bounds,
+        f64::abi_surface<f64::quadric_surface>, kPluginGlsl, "quadric", refine_quadric_record);
 
 }  // namespace
 

@@ -2,21 +2,17 @@
 // thickness, visible from both sides; the core applies `center` and
 // `rotation`. inner_radius = 0 gives a full disk.
 //
-// Numerics
-// - intersect: the origin is moved to the foot of the perpendicular from the
-//   centre first; then s = -o.y / d.y (d.y == 0 exactly: parallel, a miss)
-//   and the hit point o + s d is formed in that frame, so its error is
-//   ~eps * |ring| rather than eps * |origin| for a camera 1e4 away, and the
-//   inner/outer test (inclusive, on sqrt(x^2 + z^2) as the spec states it)
-//   is decided on an accurate point.
-// - surface: the stored point with y set to exactly 0.
-// - GPU: ring.glsl, the same method in GLSL double precision.
-#include <cmath>
-
+// intersect and surface are written once, for the CPU and the GPU, in
+// ring.shared.glsl (the numerics are described there); this file holds
+// fields, validate, pack, bounds and the long-double refine.
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
-#include "ring.glsl.hpp"
+#include "prism/sdk/shared_plugin.hpp"
+#include "ring.shared.glsl.hpp"
+
+#define PRISM_SHARED_SOURCE "ring.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
 
 namespace {
 
@@ -28,8 +24,8 @@ struct RingRecord {
   double pad[2];
 };
 static_assert(sizeof(RingRecord) % 16 == 0);
-static_assert(glsl_define(kPluginGlsl, "RING_INNER") == offsetof(RingRecord, inner) / sizeof(double));
-static_assert(glsl_define(kPluginGlsl, "RING_OUTER") == offsetof(RingRecord, outer) / sizeof(double));
+static_assert(RING_INNER == offsetof(RingRecord, inner) / sizeof(double));
+static_assert(RING_OUTER == offsetof(RingRecord, outer) / sizeof(double));
 
 const double kDefaultInner[] = {0.0};
 
@@ -59,25 +55,6 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return 1;
 }
 
-int intersect(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit) {
-  const auto& rec = record_of<RingRecord>(record);
-  glm::dvec3 o = load3(ray->origin), d = load3(ray->dir);
-  if (d.y == 0.0) return 0;
-  double tf = foot_parameter(o, d);
-  glm::dvec3 of = o + tf * d;
-  double s = -of.y / d.y;
-  double t = tf + s;
-  if (!(t > tmin && t <= tmax)) return 0;
-  glm::dvec3 p = of + s * d;
-  p.y = 0.0;
-  double radius = std::sqrt(p.x * p.x + p.z * p.z);
-  if (!(radius >= rec.inner && radius <= rec.outer)) return 0;
-  *hit = PrismHit{};
-  hit->t = t;
-  store3(p, hit->data);
-  return 1;
-}
-
 // The plane y = 0 in long double (see prism/sdk/refine.hpp).
 void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
   Vec3x p;
@@ -86,17 +63,9 @@ void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
   store3(p, hit->data);
 }
 
-void surface(const void* record, const PrismRay*, const PrismHit* hit, PrismSurface* out) {
-  const auto& rec = record_of<RingRecord>(record);
-  glm::dvec3 p = load3(hit->data);
-  double radius = std::sqrt(p.x * p.x + p.z * p.z);
-  double u = (radius - rec.inner) / (rec.outer - rec.inner);
-  write_surface(out, p, glm::dvec3(0.0, 1.0, 0.0), u, turn_fraction(p.z, p.x));
-}
-
-const PrismPrimitiveDesc kDesc = describe_primitive<intersect>("ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields,
-                                                       sizeof(RingRecord), validate, pack, bounds, surface,
-                                                       kPluginGlsl, "ring", refine);
+const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::ring_intersect>>(
+    "ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(RingRecord), validate, pack, bounds,
+    f64::abi_surface<f64::ring_surface>, kPluginGlsl, "ring", refine);
 
 }  // namespace
 

@@ -3,7 +3,9 @@
 // Everything here is double precision and free of absolute epsilons: the
 // only exact-zero tests are the ones the spec asks for (a quadratic whose t^2
 // coefficient is exactly 0 is linear). See docs/numerics.md for why
-// each form was chosen.
+// each form was chosen. The functions shared with the GPU are written once,
+// in prism/sdk/shared/library.shared.glsl; these are their double
+// instantiations (prism::sdk::f64) under the C++ SDK's names.
 #pragma once
 
 #include <algorithm>
@@ -11,6 +13,11 @@
 #include <limits>
 
 #include <glm/glm.hpp>
+
+#include "prism/sdk/library.hpp"
+
+#define PRISM_SHARED_SOURCE "prism/sdk/shared/roots.shared.glsl"
+#include "prism/sdk/instantiate.hpp"
 
 namespace prism::sdk {
 
@@ -29,38 +36,17 @@ inline double safe_acos(double x) { return std::acos(std::clamp(x, -1.0, 1.0)); 
 inline double atan2_spec(double y, double x) { return std::atan2(y, x); }
 
 // The spec's azimuth texture coordinate: 0.5 + atan2(y, x) / 2pi, in [0, 1].
-inline double turn_fraction(double y, double x) { return 0.5 + std::atan2(y, x) / (2.0 * kPi); }
+inline double turn_fraction(double y, double x) { return f64::prism_turn_fraction(y, x); }
 
-// a*b - c*d with one rounding (Kahan's algorithm via fma): keeps b^2 - 4ac
-// meaningful for near-tangent rays where the two products nearly cancel.
+// a*b - c*d with one rounding (Kahan's algorithm via fma).
 inline double difference_of_products(double a, double b, double c, double d) {
-  double cd = c * d;
-  double err = std::fma(-c, d, cd);
-  double dop = std::fma(a, b, -cd);
-  return dop + err;
+  return f64::prism_difference_of_products(a, b, c, d);
 }
 
 // Real roots of a t^2 + b t + c = 0 in ascending order; returns how many
-// (0, 1 or 2; a double root is reported twice). Uses the cancellation-free
-// pair t = c/q, t = q/a with q = -(b + sign(b) sqrt(disc))/2. a == 0 exactly
-// makes the equation linear; b == 0 then leaves no isolated root.
+// (0, 1 or 2; a double root is reported twice; library.shared.glsl says how).
 inline int solve_quadratic(double a, double b, double c, double& t0, double& t1) {
-  if (a == 0.0) {
-    if (b == 0.0) return 0;
-    t0 = t1 = -c / b;
-    return 1;
-  }
-  double disc = difference_of_products(b, b, 4.0 * a, c);
-  if (!(disc >= 0.0)) return 0;  // also rejects NaN
-  double q = -0.5 * (b + std::copysign(std::sqrt(disc), b));
-  if (q == 0.0) {  // b == 0 and disc == 0, hence c == 0: double root at 0
-    t0 = t1 = 0.0;
-    return 2;
-  }
-  t0 = c / q;
-  t1 = q / a;
-  if (t0 > t1) std::swap(t0, t1);
-  return 2;
+  return f64::prism_solve_quadratic(a, b, c, t0, t1);
 }
 
 // Safeguarded Newton-bisection for a root of fn in [a, b], given fa = fn(a)
@@ -70,46 +56,25 @@ inline int solve_quadratic(double a, double b, double c, double& t0, double& t1)
 // derivative is 0 or NaN), so the result always lies in [a, b]. It stops
 // after a Newton step shorter than `tol` (which leaves an error ~tol^2) or
 // once the bracket itself is narrower than `tol`.
+// The steps are prism/sdk/shared/roots.shared.glsl's, which the GPU runs too.
 template <class Fn>
 double solve_bracketed(const Fn& fn, double a, double b, double fa, double fb, double tol) {
-  const bool a_positive = fa > 0.0;
-  double lo = a, hi = b;  // lo: fa's side, hi: the other
-  double s = a - fa * (b - a) / (fb - fa);
-  if (!(s > a && s < b)) s = 0.5 * (a + b);
-  for (int i = 0; i < 128; ++i) {
+  f64::PrismBracket bracket = f64::prism_bracket_start(a, b, fa, fb, tol);
+  for (int i = 0; i < PRISM_BRACKET_MAX_STEPS; ++i) {
     double f = 0.0, df = 0.0;
-    fn(s, f, df);
-    if (f == 0.0) return s;
-    ((f > 0.0) == a_positive ? lo : hi) = s;
-    double mn = std::min(lo, hi), mx = std::max(lo, hi);
-    double next = s - f / df;
-    if (next >= mn && next <= mx) {
-      if (std::abs(next - s) <= tol) return next;
-    } else {
-      next = 0.5 * (lo + hi);
-      if (mx - mn <= tol || next == mn || next == mx) return next;
-    }
-    s = next;
+    fn(bracket.s, f, df);
+    if (f64::prism_bracket_step(bracket, f, df)) break;
   }
-  return s;
+  return bracket.s;
 }
 
-// Unit vector along v without underflow or overflow of |v|^2: scaling by the
-// largest component first makes (1e-300, 0, 0) and (1e300, 1e300, 0) work.
-inline glm::dvec3 safe_normalize(const glm::dvec3& v) {
-  double m = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-  if (!(m > 0.0) || !std::isfinite(m)) return glm::dvec3(0.0);
-  glm::dvec3 w = v / m;
-  return w / std::sqrt(glm::dot(w, w));
-}
+// Unit vector along v without underflow or overflow of |v|^2.
+inline glm::dvec3 safe_normalize(const glm::dvec3& v) { return f64::prism_safe_normalize(v); }
 
-inline double max_abs_component(const glm::dvec3& v) {
-  return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-}
+inline double max_abs_component(const glm::dvec3& v) { return f64::prism_max_abs_component(v); }
 
 // Parameter of the foot of the perpendicular from the local origin to the
-// ray (d unit). Moving a far ray origin there before solving keeps every
-// coefficient of order the object's size (Wald, Ray Tracing Gems II ch. 34).
-inline double foot_parameter(const glm::dvec3& o, const glm::dvec3& d) { return -glm::dot(o, d); }
+// ray (d unit), where a far ray origin is moved before solving.
+inline double foot_parameter(const glm::dvec3& o, const glm::dvec3& d) { return f64::prism_foot_parameter(o, d); }
 
 }  // namespace prism::sdk

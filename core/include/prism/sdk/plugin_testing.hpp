@@ -17,6 +17,7 @@
 #include "prism/primitive_abi.h"
 #include "prism/sdk/math.hpp"
 #include "prism/sdk/primitive_sdk.hpp"
+#include "prism/sdk/shared_source.hpp"
 
 namespace prism::sdk::testing {
 
@@ -137,25 +138,26 @@ int count_reintersections(const Shape& shape, const glm::dvec3& p, const glm::dv
 inline double rel_err(double got, double want) { return std::abs(got - want) / std::abs(want); }
 
 // Empty when `desc` carries a GPU intersector as primitive_abi.h asks:
-// prefix `type`, the two entry points with their exact signatures, and a
-// `// prism:require <module>` line for each of `modules` (and none other);
-// otherwise what is wrong.
+// prefix `type`, the two entry points with their exact signatures (in the
+// shared dialect, prism/sdk/dialect.hpp, or in plain GLSL for a hand-written
+// one), and a `// prism:require <module>` line for each of `modules` (and
+// none other, none malformed); otherwise what is wrong.
 inline std::string gpu_intersector_problem(const PrismPrimitiveDesc& desc, const std::string& type,
                                            const std::vector<std::string>& modules) {
   if (!desc.glsl_source || !desc.glsl_prefix) return "no GLSL source or prefix";
   if (type != desc.glsl_prefix) return std::string("prefix is ") + desc.glsl_prefix;
   const std::string glsl = desc.glsl_source;
+  const bool shared = glsl.find("PrismRecord rec") != std::string::npos;
   const std::string entry_points[] = {
-      "bool " + type + "_intersect(uint rec, PrismRay ray, double tmin, double tmax, out PrismHit hit)",
-      "void " + type + "_surface(uint rec, PrismRay ray, PrismHit hit, out PrismSurface s)"};
+      shared ? "bool " + type + "_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(PrismHit) hit)"
+             : "bool " + type + "_intersect(uint rec, PrismRay ray, double tmin, double tmax, out PrismHit hit)",
+      shared ? "void " + type + "_surface(PrismRecord rec, PrismRay ray, PrismHit hit, OUT(PrismSurface) s)"
+             : "void " + type + "_surface(uint rec, PrismRay ray, PrismHit hit, out PrismSurface s)"};
   for (const std::string& e : entry_points)
     if (glsl.find(e) == std::string::npos) return "missing `" + e + "`";
-  size_t requires_found = 0;
-  for (size_t at = glsl.find("// prism:require "); at != std::string::npos; at = glsl.find("// prism:require ", at + 1))
-    ++requires_found;
-  for (const std::string& m : modules)
-    if (glsl.find("\n// prism:require " + m + "\n") == std::string::npos) return "no line `// prism:require " + m + "`";
-  if (requires_found != modules.size()) return "unexpected `// prism:require` lines";
+  const RequiredModules required = required_modules(glsl);
+  if (!required.problem.empty()) return required.problem;
+  if (required.modules != modules) return "unexpected `// prism:require` lines";
   return {};
 }
 

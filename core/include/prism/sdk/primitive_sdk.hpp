@@ -74,6 +74,7 @@ inline int validate_nothing(const double*, PrismError*) { return 0; }
 
 using IntersectFn = int (*)(const void*, const PrismRay*, double, double, PrismHit*);
 using RefineFn = void (*)(const void*, const PrismRayExt*, PrismHit*);
+using SurfaceFn = void (*)(const void*, const PrismRay*, const PrismHit*, PrismSurface*);
 
 // intersect_batch for plugins whose batch is just a loop over `intersect`.
 template <IntersectFn Intersect>

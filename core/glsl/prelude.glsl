@@ -1,0 +1,75 @@
+// The shared dialect, GLSL side (prism/sdk/dialect.hpp is the C++ side and
+// documents the dialect): what makes a `*.shared.glsl` source, written once
+// for the CPU and the GPU, plain GLSL 4.50. The kernel generator places it
+// after the kernel header (#version, extensions, PRISM_BINDING_* and
+// PRISM_FEATURE_* defines) and before the shared library
+// (prism/sdk/shared/library.shared.glsl) and every plugin source.
+//
+// Precision: double, unless the header defines PRISM_REAL_FLOAT (the float
+// instantiation that `scripts/check_plugin_glsl.sh` compiles). The record
+// buffer is doubles either way, as the C++ `pack` writes it.
+//
+// GLSL has no double atan/asin: prism_atan2 and prism_safe_asin evaluate in
+// float, which is far inside what a texel or an 8-bit pixel resolves; only
+// uv uses them.
+#ifdef PRISM_REAL_FLOAT
+#define real float
+#define real2 vec2
+#define real3 vec3
+#define real4 vec4
+#else
+#define real double
+#define real2 dvec2
+#define real3 dvec3
+#define real4 dvec4
+#endif
+#define R(x) real(x)
+#define OUT(T) out T
+#define INOUT(T) inout T
+#define PrismRecord uint
+
+#ifdef PRISM_REAL_FLOAT
+const float PRISM_PI = 3.14159265358979323846;
+#else
+const double PRISM_PI = 3.14159265358979323846LF;
+#endif
+
+// Every object's packed parameter record, as the plugin's C++ `pack` wrote
+// it (std430: a flat run of doubles). `rec` is the record's first double.
+layout(std430, binding = PRISM_BINDING_RECORDS) readonly buffer PrismRecordBuffer {
+  double prism_records[];
+};
+
+real prism_record(uint rec, uint i) { return real(prism_records[rec + i]); }
+real3 prism_record3(uint rec, uint i) {
+  return real3(prism_records[rec + i], prism_records[rec + i + 1u], prism_records[rec + i + 2u]);
+}
+
+bool prism_is_finite(real x) { return !isinf(x) && !isnan(x); }
+
+#ifdef PRISM_REAL_FLOAT
+float prism_inf() { return uintBitsToFloat(0x7f800000u); }
+
+// std::copysign: the sign bit of y on |x| (-0.0 counts as negative).
+float prism_copysign(float x, float y) {
+  return uintBitsToFloat((floatBitsToUint(x) & 0x7fffffffu) | (floatBitsToUint(y) & 0x80000000u));
+}
+#else
+double prism_inf() { return packDouble2x32(uvec2(0u, 0x7ff00000u)); }
+
+// std::copysign: the sign bit of y on |x| (-0.0 counts as negative).
+double prism_copysign(double x, double y) {
+  uvec2 bx = unpackDouble2x32(x), by = unpackDouble2x32(y);
+  bx.y = (bx.y & 0x7fffffffu) | (by.y & 0x80000000u);
+  return packDouble2x32(bx);
+}
+#endif
+
+// The spec's clamped domain, in float (see above).
+real prism_safe_asin(real x) { return real(asin(float(clamp(x, R(-1.0), R(1.0))))); }
+
+// atan2 with the spec's atan2(0, 0) = 0 (GLSL leaves atan(0, 0) undefined).
+real prism_atan2(real y, real x) {
+  if (x == R(0.0) && y == R(0.0)) return R(0.0);
+  return real(atan(float(y), float(x)));
+}

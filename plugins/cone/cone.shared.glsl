@@ -1,0 +1,22 @@
+// Cone primitive, written once for the CPU and the GPU (the shared dialect:
+// prism/sdk/dialect.hpp): the quadric [1,-(radius/height)^2,1,0,0,0,0,0,0,0]
+// clipped to 0 <= y <= height (apex at the origin, where the gradient and so
+// the normal are all zeros, and the core uses -dir).
+//
+// It has no numerics of its own: intersect and surface are the module
+// `quadric` (prism/sdk/shared/quadric.shared.glsl), which the quadric and
+// the other axial plugin run too, so t and the normal are bit-identical to
+// those of the equivalent `quadric` object, on the CPU as on the GPU. The
+// record is the AxialQuadricRecord of prism/sdk/axial_quadric.hpp, whose
+// offsets the module defines.
+//
+// prism:require quadric
+
+bool cone_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(PrismHit) hit) {
+  return prism_quadric_intersect(rec, ray, tmin, tmax, hit);
+}
+
+// u = 0.5 + atan2(z, x)/2pi, v = y/height.
+void cone_surface(PrismRecord rec, PrismRay ray, PrismHit hit, OUT(PrismSurface) s) {
+  prism_axial_quadric_surface(rec, hit, s);
+}

@@ -1,0 +1,204 @@
+// Torus primitive, written once for the CPU and the GPU (the shared
+// dialect: prism/sdk/dialect.hpp): (|p|^2 + R^2 - r^2)^2 = 4 R^2 (p.x^2 +
+// p.z^2), axis local y, 0 < r < R. The Newton-bisection steps are the shared
+// module `roots`, the critical points' quadratic the library's.
+//
+// Numerics (why not a closed-form quartic: see docs/numerics.md, Torus;
+// closed forms lose everything for far origins, thin tubes and grazing rays)
+// 1. Bounding sphere: the ray is clipped to the sphere of radius
+//    (R + r)(1 + 1e-3) with the robust discriminant, and the origin is moved
+//    to the chord's midpoint (the foot of the perpendicular), in double. A
+//    camera 1e4 or 1e6 away then loses nothing, and the quartic is built from
+//    numbers of the torus's size.
+// 2. Scale by 1/R: in s = (t - t_f)/R the quartic f(s) is monic with O(1)
+//    coefficients. Its roots are isolated on the chord [-H, H] by the
+//    derivative sequence: roots of the quadratic f'' split the cubic f' into
+//    monotone pieces, each sign change of f' is solved by safeguarded
+//    Newton-bisection, and those critical points split f into monotone
+//    pieces, each holding at most one root. Critical points are well
+//    conditioned (f'' = O(1) there) even where f itself is not.
+// 3. Signs and roots come from the signed distance to the tube,
+//    g(s) = sqrt((sqrt(x^2 + z^2) - 1)^2 + y^2) - r/R, not from the expanded
+//    quartic: g
+//    has the same sign as f everywhere (f = A*B with A = dist^2 - (r/R)^2 and
+//    B > 0 for r < R), but no cancellation: for r/R = 1e-3 the quartic loses
+//    ~6 digits near the tube while g keeps full precision, and |g'| <= 1.
+//    Each bracketed sign change of g is solved by safeguarded
+//    Newton-bisection on g itself, which doubles as the final polish.
+// 4. Pieces are visited in order and only as far as needed: the first root
+//    with tmin < t <= tmax wins, tested on t itself (not on a rounded s).
+//    A grazing touch (g == 0 at a critical point) counts as a hit.
+// 5. surface: the stored point is re-projected onto the tube (nearest point
+//    of the core circle plus r along the radial direction) and the normal is
+//    that radial direction, which is parallel to the spec's gradient.
+//
+// prism:require roots
+//
+// Record (doubles; torus.cpp static_asserts its struct against these):
+#define TORUS_MAJOR 0
+#define TORUS_MINOR 1
+
+// Newton stops once a step is below these (in units of R); the step just
+// taken leaves an error ~K * step^2, far below double resolution. A critical
+// point off by 1e-9 changes f's extremum by ~1e-18, so it still separates
+// any root pair that double precision can tell apart.
+const real TORUS_CRITICAL_TOL = R(1.0) / R(1000000000.0);  // 1e-9, a quotient of float-exact literals
+const real TORUS_ROOT_TOL = R(1.0) / (R(1000000.0) * R(1000000.0));  // 1e-12, likewise
+
+// The scaled ray p(s) = u + s d against the torus R = 1, tube radius `tube`,
+// and the scan over its monotone pieces.
+struct TorusScan {
+  real3 u;
+  real3 d;
+  real tube;
+  real tf;
+  real big;
+  real tmin;
+  real tmax;
+  real a;   // the previous break
+  real ga;  // g there
+  bool done;
+  bool found;
+  real root;
+};
+
+// Signed distance to the tube and its derivative along the scaled ray; on
+// the axis d(radial)/ds is 0/0 and the NaN sends the solver to bisection.
+void torus_distance(TorusScan sc, real s, OUT(real) g, OUT(real) dg) {
+  real3 p = sc.u + s * sc.d;
+  real radial = sqrt(p.x * p.x + p.z * p.z);
+  real q = radial - R(1.0);
+  real dist = sqrt(q * q + p.y * p.y);
+  g = dist - sc.tube;
+  real dradial = (p.x * sc.d.x + p.z * sc.d.z) / radial;
+  dg = (q * dradial + p.y * sc.d.y) / dist;
+}
+
+real torus_distance_at(TorusScan sc, real s) {
+  real g, dg;
+  torus_distance(sc, s, g, dg);
+  return g;
+}
+
+// Closes the piece [sc.a, b]: at most one root, solved only where g changes
+// sign and the piece reaches past tmin.
+void torus_advance(INOUT(TorusScan) sc, real b) {
+  if (sc.done) return;
+  real a0 = sc.a, g0 = sc.ga, gb = torus_distance_at(sc, b);
+  sc.a = b;
+  sc.ga = gb;
+  if (sc.tf + sc.big * a0 > sc.tmax) {
+    sc.done = true;
+    return;
+  }
+  if ((g0 > R(0.0)) == (gb > R(0.0)) || sc.tf + sc.big * b <= sc.tmin) return;
+  PrismBracket br = prism_bracket_start(a0, b, g0, gb, TORUS_ROOT_TOL * (R(1.0) + abs(b)));
+  for (int i = 0; i < PRISM_BRACKET_MAX_STEPS; ++i) {
+    real g, dg;
+    torus_distance(sc, br.s, g, dg);
+    if (prism_bracket_step(br, g, dg)) break;
+  }
+  real t = sc.tf + sc.big * br.s;
+  if (t > sc.tmax) {
+    sc.done = true;
+  } else if (t > sc.tmin) {
+    sc.done = true;
+    sc.found = true;
+    sc.root = br.s;
+  }
+}
+
+// f'(s) and f''(s) of the monic quartic s^4 + c.w s^3 + c.z s^2 + c.y s + c.x.
+real torus_d1(real4 c, real s) { return ((R(4.0) * s + R(3.0) * c.w) * s + R(2.0) * c.z) * s + c.y; }
+real torus_d2(real4 c, real s) { return (R(12.0) * s + R(6.0) * c.w) * s + R(2.0) * c.z; }
+
+// The quartic along the scaled ray:
+// (s^2 + 2es + k)^2 - 4 (dxz s^2 + 2 exz s + gxz), d unit.
+real4 torus_quartic(TorusScan sc) {
+  real3 u = sc.u, d = sc.d;
+  real e = dot(u, d);
+  real k = dot(u, u) + R(1.0) - sc.tube * sc.tube;
+  real dxz = d.x * d.x + d.z * d.z, exz = u.x * d.x + u.z * d.z, gxz = u.x * u.x + u.z * u.z;
+  return real4(k * k - R(4.0) * gxz, R(4.0) * e * k - R(8.0) * exz, R(4.0) * e * e + R(2.0) * k - R(4.0) * dxz, R(4.0) * e);
+}
+
+// Feeds the scan the critical points of f in [-h, h] in order, then h.
+void torus_scan_pieces(INOUT(TorusScan) sc, real h) {
+  real4 c = torus_quartic(sc);
+  real r[2];
+  int n = prism_solve_quadratic(R(12.0), R(6.0) * c.w, R(2.0) * c.z, r[0], r[1]);
+  real ends[4];
+  ends[0] = -h;
+  ends[1] = R(0.0);
+  ends[2] = R(0.0);
+  ends[3] = R(0.0);
+  int count = 1;
+  for (int i = 0; i < n; ++i)
+    if (r[i] > -h && r[i] < h) ends[count++] = r[i];
+  ends[count++] = h;
+  sc.a = -h;
+  sc.ga = torus_distance_at(sc, -h);
+  for (int i = 0; i + 1 < count && !sc.done; ++i) {
+    real a = ends[i], b = ends[i + 1], fa = torus_d1(c, a), fb = torus_d1(c, b);
+    if ((fa > R(0.0)) == (fb > R(0.0))) continue;
+    PrismBracket br = prism_bracket_start(a, b, fa, fb, TORUS_CRITICAL_TOL * (R(1.0) + abs(a)));
+    for (int k = 0; k < PRISM_BRACKET_MAX_STEPS; ++k)
+      if (prism_bracket_step(br, torus_d1(c, br.s), torus_d2(c, br.s))) break;
+    torus_advance(sc, br.s);
+  }
+  torus_advance(sc, h);
+}
+
+bool torus_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(PrismHit) hit) {
+  prism_clear_hit(hit);
+  real big = prism_record(rec, TORUS_MAJOR), minor = prism_record(rec, TORUS_MINOR);
+  real3 d = ray.dir;
+  real tf = prism_foot_parameter(ray.origin, d);
+  real3 foot = ray.origin + tf * d;
+  real3 perp = foot - dot(foot, d) * d;
+  real bound = (big + minor) * (R(1.0) + R(1.0) / R(1000.0));  // slack: the outer equator touches R + r
+  real half2 = bound * bound - dot(perp, perp);
+  if (!(half2 >= R(0.0))) return false;
+  real h = sqrt(half2) / big;
+  if (tf + big * h <= tmin || tf - big * h > tmax) return false;
+
+  TorusScan sc;
+  sc.u = foot / big;
+  sc.d = d;
+  sc.tube = minor / big;
+  sc.tf = tf;
+  sc.big = big;
+  sc.tmin = tmin;
+  sc.tmax = tmax;
+  sc.a = R(0.0);
+  sc.ga = R(0.0);
+  sc.done = false;
+  sc.found = false;
+  sc.root = R(0.0);
+  torus_scan_pieces(sc, h);
+  if (!sc.found) return false;
+  hit.t = tf + big * sc.root;
+  hit.data = foot + (big * sc.root) * d;
+  return true;
+}
+
+// The stored point re-projected onto the tube: nearest point of the core
+// circle plus r along the radial direction, which is the normal.
+void torus_surface(PrismRecord rec, PrismRay ray, PrismHit hit, OUT(PrismSurface) s) {
+  real major = prism_record(rec, TORUS_MAJOR), minor = prism_record(rec, TORUS_MINOR);
+  real3 p = hit.data;
+  real radial = sqrt(p.x * p.x + p.z * p.z);
+  real3 normal = real3(R(0.0));
+  if (radial > R(0.0)) {
+    real3 core = real3(major * p.x / radial, R(0.0), major * p.z / radial);
+    real3 out_dir = p - core;
+    real len = length(out_dir);
+    if (len > R(0.0)) {
+      normal = out_dir / len;
+      p = core + minor * normal;
+    }
+  }
+  s.point = p;
+  s.normal = normal;
+  s.uv = real2(prism_turn_fraction(p.z, p.x), prism_turn_fraction(p.y, sqrt(p.x * p.x + p.z * p.z) - major));
+}
