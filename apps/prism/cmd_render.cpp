@@ -103,15 +103,17 @@ int run_render(const RenderArgs& args) {
   const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;
+  const bool show_steps = !args.quiet;
   Registry registry;
-  Scene scene = load_scene(args.scene, registry);
+  Scene scene = with_phase_line("loading " + scene_name_for_phase(args.scene), show_steps,
+                                [&] { return load_scene(args.scene, registry); });
   write_warnings(scene, std::cerr);
   scene.camera = camera_from_flags(args.camera, scene.camera);
   RenderSettings settings = settings_for(scene, args);
   const FramePlan plan = plan_frames(scene, args.output, args.frames, args.orbit, args.cameras);
   ms["load"] = timer.lap();
-  BackendChoice choice = open_backend(registry, args.backend);
-  choice.backend->prepare(scene);
+  BackendChoice choice = open_backend_showing_it(registry, args.backend, show_steps);
+  prepare_showing_it(choice, scene, show_steps);
   ms["build"] = timer.lap();
   std::optional<StagedFile> last;
   std::optional<Image> for_stdout;
@@ -120,7 +122,7 @@ int run_render(const RenderArgs& args) {
     if (last) last->commit();
     settings.camera = plan.cameras[f];
     label.frame = int(f);
-    if (!args.quiet) settings.progress = progress_bar(label);
+    if (!args.quiet) show_progress_bar(settings, label);
     Image image = choice.backend->render(settings);
     finish_progress_bar();
     ms["render"] += timer.lap();
