@@ -4,9 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <mutex>
+#include <thread>
 #include <nlohmann/json.hpp>
 
 #include "prism/status.hpp"
@@ -172,46 +175,69 @@ std::string format_ray_rate(double rays_per_second) {
 
 namespace {
 std::mutex progress_mutex;
-int progress_drawn = -1;  // percent last drawn; -1: no bar on the line
+bool line_open = false;   // a bar or a phase line is on the current line of stderr
+int progress_drawn = -1;  // percent last drawn; -1: no bar drawn yet
 std::chrono::steady_clock::time_point progress_start, progress_redrawn;
+// The rays this frame's render has traced so far (RenderSettings::rays_traced).
+std::atomic<uint64_t> frame_rays{0};
+
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// Marks the line as holding a bar or phase line; under progress_mutex.
+void open_line() {
+  line_open = true;
+  progress_line_open = 1;
+}
+
+// The ray rate the bar shows: this frame's once it has traced rays, else the earlier frames'.
+double shown_ray_rate(double elapsed_ms, const ProgressLabel& label) {
+  const uint64_t rays = frame_rays.load(std::memory_order_relaxed);
+  if (rays > 0 && elapsed_ms > 0.0) return double(rays) / (elapsed_ms / 1000.0);
+  return label.rays_per_second;
+}
 
 // What follows the percentage: times, ray rate, frame.
 std::string progress_details(double fraction, const ProgressLabel& label) {
-  const auto now = std::chrono::steady_clock::now();
-  const double elapsed = std::chrono::duration<double, std::milli>(now - progress_start).count();
+  const double elapsed = ms_since(progress_start);
   std::string text = format_duration(elapsed);
   if (fraction > 0.0 && fraction < 1.0) text += ", " + format_duration(elapsed * (1.0 - fraction) / fraction) + " left";
-  if (label.rays_per_second > 0.0) text += ", " + format_ray_rate(label.rays_per_second);
+  if (const double rate = shown_ray_rate(elapsed, label); rate > 0.0) text += ", " + format_ray_rate(rate);
   if (label.frames > 1) text += ", frame " + std::to_string(label.frame + 1) + "/" + std::to_string(label.frames);
   return text;
 }
+
+void draw_progress(double fraction, const ProgressLabel& label) {
+  const int percent = std::clamp(static_cast<int>(fraction * 100.0), 0, 100);
+  std::lock_guard lock(progress_mutex);
+  // Redrawn when the percentage moves on, or every quarter second for the
+  // clock; a thread's report older than what is shown is dropped.
+  const auto now = std::chrono::steady_clock::now();
+  if (percent < progress_drawn) return;
+  if (percent == progress_drawn && now - progress_redrawn < std::chrono::milliseconds(250)) return;
+  progress_drawn = percent;
+  open_line();
+  progress_redrawn = now;
+  constexpr int kWidth = 40;
+  const int filled = percent * kWidth / 100;
+  // \033[K clears what a longer earlier line left on the right.
+  std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %s\033[K", filled, "########################################",
+               kWidth - filled, "", percent, progress_details(fraction, label).c_str());
+  std::fflush(stderr);
+}
 }  // namespace
 
-std::function<void(double)> progress_bar(const ProgressLabel& label) {
-  if (!::isatty(STDERR_FILENO)) return {};
+void show_progress_bar(RenderSettings& settings, const ProgressLabel& label) {
+  if (!::isatty(STDERR_FILENO)) return;
   {
     std::lock_guard lock(progress_mutex);
     progress_drawn = -1;
     progress_start = progress_redrawn = std::chrono::steady_clock::now();
+    frame_rays = 0;
   }
-  return [label](double fraction) {
-    const int percent = std::clamp(static_cast<int>(fraction * 100.0), 0, 100);
-    std::lock_guard lock(progress_mutex);
-    // Redrawn when the percentage moves on, or every quarter second for the
-    // clock; a thread's report older than what is shown is dropped.
-    const auto now = std::chrono::steady_clock::now();
-    if (percent < progress_drawn) return;
-    if (percent == progress_drawn && now - progress_redrawn < std::chrono::milliseconds(250)) return;
-    progress_drawn = percent;
-    progress_line_open = 1;
-    progress_redrawn = now;
-    constexpr int kWidth = 40;
-    const int filled = percent * kWidth / 100;
-    // \033[K clears what a longer earlier line left on the right.
-    std::fprintf(stderr, "\r[%.*s%*s] %3d%%  %s\033[K", filled, "########################################",
-                 kWidth - filled, "", percent, progress_details(fraction, label).c_str());
-    std::fflush(stderr);
-  };
+  settings.rays_traced = [](uint64_t rays) { frame_rays.store(rays, std::memory_order_relaxed); };
+  settings.progress = [label](double fraction) { draw_progress(fraction, label); };
 }
 
 void finish_progress_bar() { end_progress_line(); }
@@ -226,9 +252,71 @@ void show_status_notices() {
 
 void end_progress_line() {
   std::lock_guard lock(progress_mutex);
-  if (progress_drawn >= 0) std::fprintf(stderr, "\n");
+  if (line_open) std::fprintf(stderr, "\n");
+  line_open = false;
   progress_drawn = -1;
   progress_line_open = 0;
+}
+
+// The thread that redraws a phase line's clock until the phase ends.
+struct PhaseLine::Ticker {
+  std::string what;
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  std::mutex mutex;
+  std::condition_variable done_changed;
+  bool done = false;
+  std::thread thread;
+
+  void draw() {
+    std::lock_guard lock(progress_mutex);
+    open_line();
+    std::fprintf(stderr, "\r%s... %s\033[K", what.c_str(), format_duration(ms_since(start)).c_str());
+    std::fflush(stderr);
+  }
+  void run() {
+    std::unique_lock lock(mutex);
+    do {
+      lock.unlock();
+      draw();
+      lock.lock();
+    } while (!done_changed.wait_for(lock, std::chrono::milliseconds(250), [this] { return done; }));
+  }
+};
+
+PhaseLine::PhaseLine(std::string what, bool show) {
+  if (!show || !::isatty(STDERR_FILENO)) return;
+  ticker_ = std::make_unique<Ticker>();
+  ticker_->what = std::move(what);
+  ticker_->thread = std::thread([ticker = ticker_.get()] { ticker->run(); });
+}
+
+PhaseLine::~PhaseLine() {
+  if (!ticker_) return;
+  {
+    std::lock_guard lock(ticker_->mutex);
+    ticker_->done = true;
+  }
+  ticker_->done_changed.notify_one();
+  ticker_->thread.join();
+  // The step is over: its line makes room for the next one or the bar.
+  std::lock_guard lock(progress_mutex);
+  if (line_open) std::fprintf(stderr, "\r\033[K");
+  std::fflush(stderr);
+  line_open = false;
+  progress_line_open = 0;
+}
+
+std::string scene_name_for_phase(const std::string& scene_file) {
+  return scene_file == kStandardInput ? std::string("standard input") : scene_file;
+}
+
+BackendChoice open_backend_showing_it(Registry& registry, const std::string& backend, bool show) {
+  const std::string what = backend == "auto" ? "choosing the backend" : "starting " + backend;
+  return with_phase_line(what, show, [&] { return open_backend(registry, backend); });
+}
+
+void prepare_showing_it(const BackendChoice& choice, const Scene& scene, bool show) {
+  with_phase_line(choice.name + ": preparing the scene", show, [&] { choice.backend->prepare(scene); });
 }
 
 }  // namespace prism::cli

@@ -73,19 +73,54 @@ inline constexpr unsigned kStopGraceSeconds = 2;
 void stop_on_interrupt();
 
 // What the progress bar says beside the fraction done: the frame of a
-// sequence, and the ray rate when an earlier frame measured it.
+// sequence, and the ray rate of an earlier frame, shown until this frame's
+// backend reports the rays it has traced.
 struct ProgressLabel {
   int frame = 0, frames = 1;     // frame `frame` (0-based) of `frames`
   double rays_per_second = 0;    // 0: not known yet
 };
-// A progress bar on stderr, drawn only when stderr is a terminal:
+// Sets `settings`' progress callbacks to draw a progress bar on stderr, only
+// when stderr is a terminal:
 // `[####    ]  69%  1.2 s, 0.5 s left, 7.0 Mrays/s, frame 2/24`.
-std::function<void(double)> progress_bar(const ProgressLabel& label = {});
+// The ray rate is this frame's as soon as the backend reports rays
+// (RenderSettings::rays_traced), so it shows during the first frame too.
+void show_progress_bar(RenderSettings& settings, const ProgressLabel& label = {});
 // The bar is complete: the next output starts on a line of its own.
 void finish_progress_bar();
 // Before a message while a bar may be half drawn (an error, an interrupt):
 // ends its line, so that the message is not glued to it.
 void end_progress_line();
+
+// A long step before the bar starts (loading the scene, starting or
+// preparing the backend), shown on the bar's line while it runs:
+// `loading big.json... 1.2 s`, its clock redrawn every quarter second by a
+// thread of its own. The line is cleared when the object goes, so the next
+// step or the bar takes its place. Nothing when stderr is not a terminal or
+// `show` is false (-q).
+class PhaseLine {
+ public:
+  PhaseLine(std::string what, bool show);
+  ~PhaseLine();
+  PhaseLine(const PhaseLine&) = delete;
+  PhaseLine& operator=(const PhaseLine&) = delete;
+
+ private:
+  struct Ticker;
+  std::unique_ptr<Ticker> ticker_;  // null: not shown
+};
+// Runs `step` with `what` shown as a PhaseLine; returns what it returns.
+template <class Step>
+auto with_phase_line(const std::string& what, bool show, Step&& step) {
+  PhaseLine line(what, show);
+  return step();
+}
+// How a phase line names the scene file: "standard input" for -.
+std::string scene_name_for_phase(const std::string& scene_file);
+// open_backend and Backend::prepare, each shown as a phase line:
+// "starting embree..." ("choosing the backend..." for auto) and
+// "embree: preparing the scene..." (building its BVH, uploading it).
+BackendChoice open_backend_showing_it(Registry& registry, const std::string& backend, bool show);
+void prepare_showing_it(const BackendChoice& choice, const Scene& scene, bool show);
 
 // Prints the core's notices of slow steps (prism/status.hpp) on stderr,
 // each on a line of its own: "prism: opengl: compiling the kernel (...)".

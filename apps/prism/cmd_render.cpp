@@ -103,15 +103,17 @@ int run_render(const RenderArgs& args) {
   const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;
+  const bool show_steps = !args.quiet;
   Registry registry;
-  Scene scene = load_scene(args.scene, registry);
+  Scene scene = with_phase_line("loading " + scene_name_for_phase(args.scene), show_steps,
+                                [&] { return load_scene(args.scene, registry); });
   write_warnings(scene, std::cerr);
   scene.camera = camera_from_flags(args.camera, scene.camera);
   RenderSettings settings = settings_for(scene, args);
   const FramePlan plan = plan_frames(scene, args.output, args.frames, args.orbit, args.cameras);
   ms["load"] = timer.lap();
-  BackendChoice choice = open_backend(registry, args.backend);
-  choice.backend->prepare(scene);
+  BackendChoice choice = open_backend_showing_it(registry, args.backend, show_steps);
+  prepare_showing_it(choice, scene, show_steps);
   ms["build"] = timer.lap();
   std::optional<StagedFile> last;
   std::optional<Image> for_stdout;
@@ -120,7 +122,7 @@ int run_render(const RenderArgs& args) {
     if (last) last->commit();
     settings.camera = plan.cameras[f];
     label.frame = int(f);
-    if (!args.quiet) settings.progress = progress_bar(label);
+    if (!args.quiet) show_progress_bar(settings, label);
     Image image = choice.backend->render(settings);
     finish_progress_bar();
     ms["render"] += timer.lap();
@@ -158,20 +160,38 @@ PrismMpiRenderFn load_mpi_module() {
   return entry;
 }
 
+// --threads N holds on every rank: each is a process of its own that runs
+// this command line. A bad count is left to rank 0's checks, which stop
+// every rank with one message.
+std::shared_ptr<void> limit_rank_threads(const std::optional<int>& threads) {
+  if (!threads || *threads < 1) return nullptr;
+  return limit_threads(threads);
+}
+
 int run_mpi_render(const RenderArgs& args) {
   if (args.tile < 8 || args.tile > 4096) throw InputError("--tile: must be in [8, 4096], got " + std::to_string(args.tile));
   PrismMpiRenderFn render = load_mpi_module();
+  const auto threads = limit_rank_threads(args.threads);
+  // What rank 0 planned, for its summary line.
+  std::optional<FramePlan> plan;
+  RenderSettings settings;
   MpiRequest request;
   request.backend = args.backend;
   request.tile = args.tile;
   request.stats = args.stats;
-  request.prepare_job = [&args] {
+  request.prepare_job = [&] {
     check_outputs(args);
     Registry registry;
-    Scene scene = load_scene(args.scene, registry);
+    Scene scene = with_phase_line("loading " + scene_name_for_phase(args.scene), !args.quiet,
+                                  [&] { return load_scene(args.scene, registry); });
+    write_warnings(scene, std::cerr);
     scene.camera = camera_from_flags(args.camera, scene.camera);
-    const FramePlan plan = plan_frames(scene, args.output, args.frames, args.orbit, args.cameras);
-    return MpiJob{args.scene, settings_for(scene, args), plan.cameras, plan.outputs};
+    plan = plan_frames(scene, args.output, args.frames, args.orbit, args.cameras);
+    settings = settings_for(scene, args);
+    return MpiJob{args.scene, settings, plan->cameras, plan->outputs};
+  };
+  request.written = [&](const std::string& backend, double render_ms, uint64_t rays) {
+    if (!args.quiet) print_summary(args, *plan, backend, settings, render_ms, rays);
   };
   return render(request);
 }
@@ -203,7 +223,8 @@ Command add_render_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   sub->add_option("--orbit", args->orbit, "Degrees the --frames camera path turns in all (default 360)");
   sub->add_option("--cameras", args->cameras, "Render the cameras listed in this JSON file ({\"cameras\": [...]}) as frames");
-  sub->add_option("--threads", args->threads, "Threads of the CPU backends, at least 1 (default: one per core)");
+  sub->add_option("--threads", args->threads,
+                  "Threads of the CPU backends, at least 1, on each rank with --mpi (default: one per core)");
   sub->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary line");
   sub->add_flag("-v,--verbose", args->verbose, "Also print the thread count and the phase times --stats writes");
   sub->add_flag("--mpi", args->mpi, "Deal tiles out over MPI ranks (mpirun -np N prism render ... --mpi)");

@@ -44,14 +44,19 @@ int run_trace(const TraceArgs& args) {
   const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;
+  // trace has no bar: each step, the tracing too, shows as a phase line on a terminal.
+  constexpr bool kShowSteps = true;
   Registry registry;
-  Scene scene = load_scene(args.scene, registry);
-  std::vector<TraceQuery> rays = read_ray_csv(args.rays);
+  Scene scene = with_phase_line("loading " + scene_name_for_phase(args.scene), kShowSteps,
+                                [&] { return load_scene(args.scene, registry); });
+  std::vector<TraceQuery> rays = with_phase_line("reading " + args.rays, kShowSteps, [&] { return read_ray_csv(args.rays); });
   ms["load"] = timer.lap();
-  BackendChoice choice = open_backend(registry, args.backend);
-  choice.backend->prepare(scene);
+  BackendChoice choice = open_backend_showing_it(registry, args.backend, kShowSteps);
+  prepare_showing_it(choice, scene, kShowSteps);
   ms[ms_key::kBuild] = timer.lap();
-  auto results = choice.backend->trace(rays);
+  const std::string tracing = choice.name + ": tracing " + std::to_string(rays.size()) + (rays.size() == 1 ? " ray" : " rays");
+  auto results = with_phase_line(tracing, kShowSteps,
+                                 [&] { return choice.backend->trace(rays); });
   ms[ms_key::kRender] = timer.lap();
   // Both complete on disk before either replaces its older file.
   StagedFile output = stage_text_file(args.output, format_results(results, args.digits));

@@ -156,6 +156,7 @@ class OpenGLBackend : public Backend {
     std::vector<GpuPixel> pixels(size_t(tw) * th);
     uint32_t counters[gpu::kRayCounterCount];
     const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings);
+    const uint64_t rays_before = stats_.rays;  // the counters add up over calls; the progress is this call's
     for (size_t t = 0; t < tiles.size(); ++t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
@@ -170,7 +171,7 @@ class OpenGLBackend : public Backend {
       check_gl("rendering");
       gpu::store_tile(image, settings, pixels.data(), tile);
       gpu::add_ray_counters(stats_, counters);
-      if (settings.progress) settings.progress(double(t + 1) / double(tiles.size()));
+      report_progress(settings, double(t + 1) / double(tiles.size()), stats_.rays - rays_before);
     }
     stats_.ms[ms_key::kRender] += ms_since(start);
     return image;

@@ -141,6 +141,7 @@ class VulkanBackend : public Backend {
     const auto* header = static_cast<const uint32_t*>(readback.mapped());
     const auto* pixels = reinterpret_cast<const GpuPixel*>(static_cast<const char*>(readback.mapped()) + gpu::kOutputHeaderBytes);
     const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings);
+    const uint64_t rays_before = stats_.rays;  // the counters add up over calls; the progress is this call's
     for (size_t t = 0; t < tiles.size(); ++t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
@@ -150,7 +151,7 @@ class VulkanBackend : public Backend {
       });
       gpu::store_tile(image, settings, pixels, tile);
       gpu::add_ray_counters(stats_, header);
-      if (settings.progress) settings.progress(double(t + 1) / double(tiles.size()));
+      report_progress(settings, double(t + 1) / double(tiles.size()), stats_.rays - rays_before);
     }
     stats_.ms[ms_key::kRender] += ms_since(start);
     check_validation("rendering");

@@ -62,6 +62,12 @@ void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts, Phase
     for (int i = x0; i < std::min(x0 + kTileSize, r.x + r.width); ++i) render_pixel(f, shader, i, j);
 }
 
+uint64_t ray_total(const RayCounts& counts) {
+  uint64_t total = 0;
+  for (const uint64_t n : counts.n) total += n;
+  return total;
+}
+
 void add_counts(BackendStats& stats, const RayCounts& counts) {
   for (int kind = 0; kind < kRayKinds; ++kind) {
     stats.rays_by_kind[ray_kind_name(kind)] += counts.n[size_t(kind)];
@@ -92,6 +98,7 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   const int tiles_x = (rect.width + kTileSize - 1) / kTileSize;
   const int tiles = tiles_x * ((rect.height + kTileSize - 1) / kTileSize);
   std::atomic<int> done{0};
+  std::atomic<uint64_t> traced{0};  // rays of the tiles done, for RenderSettings::rays_traced
   std::mutex counts_mutex;
   RayCounts total;
   PhaseProfile total_profile;
@@ -100,9 +107,11 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
     PhaseProfile profile;
     for (int tile = begin; tile < end; ++tile) {
       if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
+      const uint64_t before = ray_total(counts);
       render_tile(frame, tile, tiles_x, counts, settings.profile ? &profile : nullptr);
+      const uint64_t rays = traced += ray_total(counts) - before;
       int finished = ++done;
-      if (settings.progress) settings.progress(double(finished) / tiles);
+      report_progress(settings, double(finished) / tiles, rays);
     }
     std::lock_guard lock(counts_mutex);
     total.add(counts);

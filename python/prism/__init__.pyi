@@ -20,6 +20,12 @@ class SceneError(ValueError):
     path: str
     source: str
 
+class SceneWarning(UserWarning):
+    """A scene that loads but looks wrong, issued by Engine.load_scene through
+    warnings.warn: no light and no ambient, colours above 1 that look like
+    0-255 values, objects entirely behind the camera (the warnings `prism
+    render` prints). str(warning) is "SOURCE: PATH: what"."""
+
 class RenderError(RuntimeError):
     """A failure at run time: a backend that cannot start here, a device lost, a file not written."""
 
@@ -216,7 +222,10 @@ class Engine:
     def primitive_types(self) -> list[str]: ...
     def auto_backend(self) -> str: ...
     def load_scene(self, source: Union[_Path, Mapping[str, Any]], base_dir: Optional[_Path] = None) -> Scene:
-        """A scene from a file or a dict in the scene format; raises SceneError with the JSON path."""
+        """A scene from a file or a dict in the scene format; raises SceneError with the JSON path.
+
+        A scene that loads but looks wrong comes back with one
+        warnings.warn(message, SceneWarning) per warning."""
     def new_scene(self) -> Scene:
         """An empty scene: the default camera, 640x360, 1 spp, depth 5."""
     def renderer(self, scene: Scene, backend: str = "auto") -> Renderer: ...

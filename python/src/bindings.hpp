@@ -80,6 +80,12 @@ struct SceneHandle {
 // "move_object(#3)"), `source` is SOURCE (a file name, "<dict>", or "").
 [[noreturn]] void raise_scene_error(const std::string& message, const std::string& source);
 
+// Issues each of the loaded scene's warnings (prism/scene_loader.hpp: no
+// light, 0-255 colours, objects behind the camera) as warnings.warn(message,
+// prism.SceneWarning), attributed to the caller's line. A filter that turns
+// them into errors raises the warning (py::error_already_set).
+void warn_about_scene(const Scene& scene);
+
 // Runs `edit`, turning an InputError into prism.SceneError.
 template <class Edit>
 auto scene_call(const std::string& source, Edit&& edit) -> decltype(edit()) {

@@ -72,7 +72,7 @@ nlohmann::ordered_json json_of(py::handle value, const std::string& path) {
   return nullptr;
 }
 
-std::shared_ptr<SceneHandle> load_scene(const std::shared_ptr<Engine>& engine, py::handle source,
+std::shared_ptr<SceneHandle> read_scene(const std::shared_ptr<Engine>& engine, py::handle source,
                                         const std::optional<std::filesystem::path>& base_dir) {
   if (PyDict_Check(source.ptr())) {
     const std::string text = json_of(source, "").dump();
@@ -84,6 +84,13 @@ std::shared_ptr<SceneHandle> load_scene(const std::shared_ptr<Engine>& engine, p
   const auto file = source.cast<std::filesystem::path>();
   return scene_call(file.string(),
                     [&] { return std::make_shared<SceneHandle>(SceneHandle{engine, LiveScene::load(*engine, file)}); });
+}
+
+std::shared_ptr<SceneHandle> load_scene(const std::shared_ptr<Engine>& engine, py::handle source,
+                                        const std::optional<std::filesystem::path>& base_dir) {
+  std::shared_ptr<SceneHandle> scene = read_scene(engine, source, base_dir);
+  warn_about_scene(scene->live.scene());
+  return scene;
 }
 
 }  // namespace
@@ -121,7 +128,9 @@ The dict goes through the scene loader exactly as a file does: the same
 checks and the same messages. Relative texture paths in a dict resolve
 against `base_dir` (default: the current folder); in a file, against the
 file's folder. Raises SceneError, whose `path` is the JSON path of what is
-wrong: SceneError("<dict>: objects[0].raduis: unknown key (did you mean 'radius'?)").)doc")
+wrong: SceneError("<dict>: objects[0].raduis: unknown key (did you mean 'radius'?)").
+A scene that loads but looks wrong (no light, 0-255 colours, objects behind
+the camera) is returned, with one warnings.warn(message, SceneWarning) each.)doc")
       .def(
           "new_scene",
           [](const std::shared_ptr<Engine>& engine) {

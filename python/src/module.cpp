@@ -2,6 +2,7 @@
 #include "bindings.hpp"
 
 #include "prism/errors.hpp"
+#include "prism/scene.hpp"
 
 namespace prism::python {
 
@@ -14,7 +15,17 @@ py::object& scene_error_type() {
   return *type;
 }
 
+py::object& scene_warning_type() {
+  static auto* type = new py::object();
+  return *type;
+}
+
 }  // namespace
+
+void warn_about_scene(const Scene& scene) {
+  for (const std::string& warning : scene.warnings)
+    if (PyErr_WarnEx(scene_warning_type().ptr(), warning.c_str(), 1) != 0) throw py::error_already_set();
+}
 
 void raise_scene_error(const std::string& message, const std::string& source) {
   std::string rest = message;
@@ -51,6 +62,14 @@ void bind_errors(py::module_& m) {
                                 "name, '<dict>' for a dict, '' for an edit.",
                                 PyExc_ValueError, nullptr));
   m.attr("SceneError") = scene_error_type();
+  scene_warning_type() = py::reinterpret_steal<py::object>(
+      PyErr_NewExceptionWithDoc("prism.SceneWarning",
+                                "A scene that loads but looks wrong, issued by Engine.load_scene through\n"
+                                "warnings.warn: no light and no ambient, colours above 1 that look like\n"
+                                "0-255 values, objects entirely behind the camera (the warnings `prism render`\n"
+                                "prints). str(warning) is \"SOURCE: PATH: what\", as the command line says it.",
+                                PyExc_UserWarning, nullptr));
+  m.attr("SceneWarning") = scene_warning_type();
   static py::exception<RuntimeError> render_error(m, "RenderError", PyExc_RuntimeError);
   render_error.doc() = "A failure at run time: a backend that cannot start here, a device lost, a file not written.";
   py::register_exception_translator([](std::exception_ptr p) {

@@ -180,8 +180,8 @@ TEST_F(Conventions, BadThreadsOrQuietAndVerboseAreRejected) {
 }
 
 // The bar, in a pseudo-terminal (script(1) runs prism on one): elapsed
-// time, the frame, and the ray rate once a frame has measured it; the
-// summary starts a line of its own.
+// time, the frame, and the ray rate (from the first tile on:
+// cli_progress_test.cpp); the summary starts a line of its own.
 TEST_F(Conventions, TheProgressBarInATerminal) {
   if (std::system("script --version > /dev/null 2>&1") != 0) GTEST_SKIP() << "no script(1)";
   const std::string command = prism_binary().string() + " render " + scene_ + " -b reference -o " +

@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <nlohmann/json.hpp>
+#include <regex>
 
 #include "prism/image_file.hpp"
 #include "test_support.hpp"
@@ -146,6 +148,74 @@ TEST_F(MpiFaults, ABadSceneStopsEveryRankWithTheLoadersError) {
                     dir_);
   EXPECT_EQ(r.status, 2) << r.err;
   EXPECT_NE(r.err.find("objects[0].radius: must be > 0, got -1"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
+// The summary line of any render, printed once, by rank 0, after the MPI
+// report; --threads holds on every rendering rank; the ranks' rays add up
+// to what one process traces for the same image.
+class MpiSummary : public testing::Test {
+ protected:
+  void SetUp() override { dir_ = fresh_temp_dir(); }
+  std::vector<std::string> args(const fs::path& out) const {
+    return {prism().string(), "render", scene().string(), "-b", "reference", "-o", out.string(),
+            "--width", "80", "--height", "45", "--spp", "2"};
+  }
+  fs::path dir_;
+};
+
+const std::string kTimeAndRate = R"([0-9]+(\.[0-9])? m?s, [0-9]+\.[0-9] [kM]rays/s)";
+
+size_t occurrences(const std::string& text, const std::string& part) {
+  size_t n = 0;
+  for (size_t at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST_F(MpiSummary, ThreeRanksEndWithTheSummaryLineAndKeepToThreads) {
+  const Outcome single = run(args(dir_ / "single.png") + std::vector<std::string>{"--stats", (dir_ / "single.json").string()}, dir_);
+  ASSERT_EQ(single.status, 0) << single.err;
+  const fs::path out = dir_ / "mpi.png";
+  const Outcome mpi = run(mpirun(3) + args(out) +
+                              std::vector<std::string>{"--mpi", "--tile", "24", "--threads", "1", "--stats",
+                                                       (dir_ / "mpi.json").string()},
+                          dir_);
+  ASSERT_EQ(mpi.status, 0) << mpi.err;
+  EXPECT_EQ(occurrences(mpi.err, "wrote "), 1u) << mpi.err;
+  EXPECT_TRUE(std::regex_search(mpi.err, std::regex("prism: mpi: 3 ranks, .*\nwrote " + out.string() +
+                                                    ": reference, 80x45, 2 spp, " + kTimeAndRate + "\n$")))
+      << mpi.err;
+  const auto stats = nlohmann::json::parse(read_file(dir_ / "mpi.json"));
+  ASSERT_EQ(stats["workers"].size(), 2u) << stats;
+  uint64_t rays = 0;
+  for (const auto& worker : stats["workers"]) {
+    EXPECT_EQ(worker["threads"], 1) << worker;
+    rays += worker["rays"].get<uint64_t>();
+  }
+  const auto whole = nlohmann::json::parse(read_file(dir_ / "single.json"));
+  EXPECT_EQ(rays, whole["rays"].get<uint64_t>());
+}
+
+TEST_F(MpiSummary, OneRankPrintsTheSummaryLineToo) {
+  const fs::path out = dir_ / "one.png";
+  const Outcome r = run(mpirun(1) + args(out) + std::vector<std::string>{"--mpi"}, dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_TRUE(std::regex_match(r.err, std::regex("wrote " + out.string() + ": reference, 80x45, 2 spp, " + kTimeAndRate + "\n")))
+      << r.err;
+}
+
+TEST_F(MpiSummary, QuietLeavesTheSummaryOut) {
+  const Outcome r = run(mpirun(3) + args(dir_ / "q.png") + std::vector<std::string>{"--mpi", "-q"}, dir_);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find("wrote "), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir_ / "q.png"));
+}
+
+// A bad count is said once, by rank 0, and every rank stops.
+TEST_F(MpiSummary, BadThreadsAreRejectedOnce) {
+  const Outcome r = run(mpirun(3) + args(dir_ / "x.png") + std::vector<std::string>{"--mpi", "--threads", "0"}, dir_);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_EQ(occurrences(r.err, "prism: error: --threads: must be at least 1, got 0\n"), 1u) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "x.png"));
 }
 

@@ -3,15 +3,18 @@
 #include "mpi_render.hpp"
 
 #include <mpi.h>
+#include <tbb/global_control.h>
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <deque>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
@@ -300,6 +303,8 @@ std::string receive_bytes(int from, int tag, MPI_Status& status, MpiClock& clock
 struct WorkerStats {
   double startup = 0, loop = 0, rendering = 0, loop_in_mpi = 0;
   uint64_t tiles = 0;
+  uint64_t rays = 0;     // every ray the rank's backend traced
+  uint64_t threads = 0;  // the rank's TBB thread limit (--threads)
 };
 
 // ---- a rendering rank
@@ -323,6 +328,7 @@ void run_worker(const MpiRequest& request, MpiClock& clock) {
   }
   Writer ready;
   ready.text(failure);
+  ready.text(opened.name);  // "auto" resolved on this rank, for the summary line
   send_bytes(ready.bytes(), 0, kReady, clock);
   stats.startup = seconds_since(start);
   const double mpi_before_loop = clock.seconds;
@@ -358,6 +364,8 @@ void run_worker(const MpiRequest& request, MpiClock& clock) {
   clock([&] { MPI_Wait(&send_request, MPI_STATUS_IGNORE); });
   stats.loop = seconds_since(start) - stats.startup;
   stats.loop_in_mpi = clock.seconds - mpi_before_loop;
+  if (opened.backend) stats.rays = opened.backend->stats().rays;
+  stats.threads = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
   clock([&] { MPI_Send(&stats, sizeof stats, MPI_BYTE, 0, kStats, MPI_COMM_WORLD); });
 }
 
@@ -398,6 +406,21 @@ class Scheduler {
   size_t units() const { return units_; }
   size_t units_left() const { return pending_.size() + tiles_out(); }
   const std::map<int, WorkerStats>& worker_stats() const { return worker_stats_; }
+  // The backends the rendering ranks started, each name once, joined by "/".
+  std::string backend_names() const {
+    std::vector<std::string> names;
+    for (const auto& [rank, name] : backends_)
+      if (std::ranges::find(names, name) == names.end()) names.push_back(name);
+    std::string joined;
+    for (const auto& name : names) joined += (joined.empty() ? "" : "/") + name;
+    return joined;
+  }
+  // Milliseconds from the first rank ready to the last tile back: the time
+  // tiles were rendered in (writing the last frame is not rendering).
+  double render_ms() const {
+    if (!first_ready_ || last_tile_ < *first_ready_) return 0.0;
+    return std::chrono::duration<double, std::milli>(last_tile_ - *first_ready_).count();
+  }
 
  private:
   void handle(int rank, int tag) {
@@ -414,6 +437,8 @@ class Scheduler {
       Reader r(bytes);
       const std::string failure = r.text();
       if (!failure.empty()) return warn(rank, "cannot start its backend", failure);  // it stops by itself
+      backends_[rank] = r.text();
+      if (!first_ready_) first_ready_ = Clock::now();
       // Two tiles each: a rank has its next tile queued while it renders one,
       // so it never waits on rank 0 between tiles.
       for (int i = 0; i < kTilesAhead; ++i) give(rank);
@@ -421,6 +446,7 @@ class Scheduler {
       const Unit unit = in_flight_.at(rank).front();  // a rank renders its tiles in the order given
       in_flight_.at(rank).pop_front();
       const bool frame_done = (missing_[size_t(unit.frame)] -= store_result(bytes, frames_)) == 0;
+      last_tile_ = Clock::now();
       give(rank);
       release_if_done();
       // Written after the ranks have their next tiles: writing takes a while
@@ -492,6 +518,9 @@ class Scheduler {
   std::vector<Image> frames_;
   std::vector<size_t> missing_;  // per frame, pixels not back yet
   std::map<int, WorkerStats> worker_stats_;
+  std::map<int, std::string> backends_;  // per rank that started one
+  std::optional<Clock::time_point> first_ready_;
+  Clock::time_point last_tile_;
   size_t units_ = 0;
   int stopped_ = 0;
 };
@@ -511,16 +540,21 @@ std::vector<std::string> gather_hosts(int rank, int size, MpiClock& clock) {
 }
 
 // One rank: rank 0 renders every frame itself, whole.
-void render_alone(const MpiJob& job, const std::string& backend) {
+void render_alone(const MpiJob& job, const MpiRequest& request) {
   Registry registry;
   const Scene scene = load_scene(job.scene_file, registry);
-  OpenedBackend opened = open_backend(registry, backend);
+  OpenedBackend opened = open_backend(registry, request.backend);
   opened.backend->prepare(scene);
+  double rendering = 0;  // seconds, writing the frames left out (as without --mpi)
   for (size_t f = 0; f < job.cameras.size(); ++f) {
     RenderSettings settings = job.settings;
     settings.camera = job.cameras[f];
-    write_image(opened.backend->render(settings), job.outputs[f]);
+    const auto start = Clock::now();
+    Image image = opened.backend->render(settings);
+    rendering += seconds_since(start);
+    write_image(image, job.outputs[f]);
   }
+  if (request.written) request.written(opened.name, 1000.0 * rendering, opened.backend->stats().rays);
 }
 
 void report(const Scheduler& scheduler, const std::vector<std::string>& hosts, double wall, const MpiClock& clock,
@@ -534,7 +568,7 @@ void report(const Scheduler& scheduler, const std::vector<std::string>& hosts, d
     startup = std::max(startup, s.startup);
     ranks.push_back({{"rank", rank},          {"host", hosts[size_t(rank)]}, {"tiles", s.tiles},
                      {"startup_s", s.startup}, {"tile_loop_s", s.loop},      {"rendering_s", s.rendering},
-                     {"tile_loop_in_mpi_s", s.loop_in_mpi}});
+                     {"tile_loop_in_mpi_s", s.loop_in_mpi}, {"rays", s.rays}, {"threads", s.threads}});
   }
   const double overhead = loop > 0 ? loop_in_mpi / loop : 0;
   std::fprintf(stderr,
@@ -570,7 +604,7 @@ int run_rank0(const MpiRequest& request, const MpiJob& job, std::string bundle, 
               MpiClock& clock) {
   const auto start = Clock::now();
   if (hosts.size() == 1) {
-    render_alone(job, request.backend);
+    render_alone(job, request);
     return 0;
   }
   broadcast(std::move(bundle), clock);
@@ -580,7 +614,13 @@ int run_rank0(const MpiRequest& request, const MpiJob& job, std::string bundle, 
                  scheduler.units_left());
     return 1;
   }
+  const double render_ms = scheduler.render_ms();
   report(scheduler, hosts, seconds_since(start), clock, request);
+  if (request.written) {
+    uint64_t rays = 0;
+    for (const auto& [rank, s] : scheduler.worker_stats()) rays += s.rays;
+    request.written(scheduler.backend_names(), render_ms, rays);
+  }
   return 0;
 }
 

@@ -34,6 +34,12 @@ struct MpiRequest {
   // Runs on rank 0 only: loads and checks everything (InputError), before
   // any rank starts a backend.
   std::function<MpiJob()> prepare_job;
+  // Runs on rank 0 once every frame is written, for the summary line: the
+  // backend the ranks ran (their names joined by "/" where they differ), the
+  // render time in milliseconds (from the first rank ready to the last tile
+  // back; with one rank, its render calls) and the rays every rank traced.
+  // May be empty.
+  std::function<void(const std::string& backend, double render_ms, uint64_t rays)> written;
 };
 
 }  // namespace prism::cli

@@ -55,6 +55,10 @@ struct RenderSettings {
   bool aov_albedo = false;
   // Called with the fraction done (0..1) from any thread; may be empty.
   std::function<void(double)> progress;
+  // Called, as `progress` is and just before it, with the rays this call has
+  // traced so far (all kinds, as BackendStats::rays counts them), so that a
+  // front end can show the ray rate while the first frame renders. May be empty.
+  std::function<void(uint64_t)> rays_traced;
   // Time the phases of the frame (backends that can: BackendStats::ms
   // "profile.<phase>", milliseconds summed over threads). Off by default:
   // the clock reads cost a few percent.
@@ -111,6 +115,13 @@ struct SceneChanges {
     return !objects.empty() || objects_added_or_removed || materials || lights || textures || environment;
   }
 };
+
+// What a backend calls each time a piece of the frame is done: `rays_traced`
+// with the rays traced so far in this call, then `progress` with the fraction done.
+inline void report_progress(const RenderSettings& settings, double fraction, uint64_t rays) {
+  if (settings.rays_traced) settings.rays_traced(rays);
+  if (settings.progress) settings.progress(fraction);
+}
 
 // The pixels a render covers: the region, or the whole image.
 inline PixelRect render_rect(const RenderSettings& settings) {
