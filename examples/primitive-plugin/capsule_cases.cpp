@@ -166,12 +166,15 @@ PrimitiveCases make_capsule_cases() {
   c.oracle = capsule_oracle;
   c.shape = make_shape;
   c.families = add_capsule;
-  c.agreement.push_back({"capsule", R"({"type": "capsule", "center": [1, 2, 3], "radius": 0.5, "height": 1.2})", 1.1});
+  c.agreement.push_back(
+      {"capsule", R"({"type": "capsule", "center": [1, 2, 3], "radius": 0.5, "height": 1.2})", 1.1});
   // radius 1, height 2, seen from below: p = (0, -1, 0), the bottom pole.
   // u = 0.5 + atan2(0, 0)/2pi = 0.5, v = 0; uv' = (0.625, 0.125) -> texel
   // (2, 0) = (0.375, 0.125, 0.125).
-  c.uv.push_back({"CapsuleBottomPoleUv", R"({"position": [0, -5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1]})",
-                  R"(, "uv_offset": [0.125, 0.125])", R"({"type": "capsule", "radius": 1, "height": 2, "material": "m"})",
+  c.uv.push_back({"CapsuleBottomPoleUv",
+                  R"({"position": [0, -5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1]})",
+                  R"(, "uv_offset": [0.125, 0.125])",
+                  R"({"type": "capsule", "radius": 1, "height": 2, "material": "m"})",
                   {0.375, 0.125, 0.125}});
   // radius 0.5, height 1: hits aim inside the solid (within 0.45 of the axis segment).
   c.bench.push_back({{{"radius", {0.5}}, {"height", {1.0}}},

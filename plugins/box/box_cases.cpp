@@ -209,7 +209,8 @@ PrimitiveCases make_box_cases() {
   c.oracle = box_oracle;
   c.shape = make_shape;
   c.families = add_box;
-  c.agreement.push_back({"box", R"({"type": "box", "center": [1, 2, 3], "half_size": [1, 0.5, 0.7]})", 1.2});
+  c.agreement.push_back({"box",
+                         R"({"type": "box", "center": [1, 2, 3], "half_size": [1, 0.5, 0.7]})", 1.2});
   // Box 2 x 1 x 1.5: hits aim inside the box shrunk by 0.9.
   c.bench.push_back({{{"half_size", {1.0, 0.5, 0.75}}}, prism::cases::bench_origins(5.0), [](BenchRng& r) {
                        return glm::dvec3(r.uniform(-0.9, 0.9), r.uniform(-0.45, 0.45), r.uniform(-0.675, 0.675));

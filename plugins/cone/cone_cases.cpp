@@ -88,7 +88,8 @@ PrimitiveCases make_cone_cases() {
   c.oracle = cone_oracle;
   c.shape = make_shape;
   c.families = add_cone;
-  c.agreement.push_back({"cone", R"({"type": "cone", "center": [1, 2, 3], "radius": 0.8, "height": 1.6})", 1.2});
+  c.agreement.push_back({"cone",
+                         R"({"type": "cone", "center": [1, 2, 3], "radius": 0.8, "height": 1.6})", 1.2});
   // radius 1, height 1 (x^2 + z^2 = y^2). From (0, 0.625, 5) along -z:
   // p = (0, 0.625, 0.625). u = 0.75, v = 0.625/1.
   // uv' = (0.875, 0.625) -> texel (3, 2) = (0.5, 0.375, 0.6875).

@@ -89,7 +89,8 @@ PrimitiveCases make_cylinder_cases() {
   c.oracle = cylinder_oracle;
   c.shape = make_shape;
   c.families = add_cylinder;
-  c.agreement.push_back({"cylinder", R"({"type": "cylinder", "center": [1, 2, 3], "radius": 0.8, "height": 1.6})", 1.2});
+  c.agreement.push_back({"cylinder",
+                         R"({"type": "cylinder", "center": [1, 2, 3], "radius": 0.8, "height": 1.6})", 1.2});
   // radius 1, height 2. From (0, 1.25, 5) along -z: p = (0, 1.25, 1).
   // u = 0.5 + atan2(1, 0)/2pi = 0.75; v = 1.25/2 = 0.625.
   // uv' = (0.875, 0.625) -> texel (3, 2) = (0.5, 0.375, 0.6875).

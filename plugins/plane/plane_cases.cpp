@@ -59,7 +59,8 @@ PrimitiveCases make_plane_cases() {
   c.bounded = false;        // no tiny plane, no cluster of planes
   c.oracle = plane_oracle;
   c.shape = make_shape;
-  c.agreement.push_back({"plane", R"({"type": "plane", "point": [1, 2, 3], "normal": [0.2, 1, -0.3]})", 2.0, false});
+  c.agreement.push_back({"plane",
+                         R"({"type": "plane", "point": [1, 2, 3], "normal": [0.2, 1, -0.3]})", 2.0, false});
   // Plane y = 0, unbounded: hits go down onto the disk |p| < 4, misses go up.
   c.bench.push_back({{{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}},
                      prism::cases::bench_origins(5.0, 0.2, true),

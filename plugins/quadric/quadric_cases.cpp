@@ -208,8 +208,11 @@ PrimitiveCases make_quadric_cases() {
   c.oracle = general_quadric_oracle;
   c.shape = make_shape;
   c.families = add_quadric;
-  c.agreement.push_back({"quadric", R"({"type": "quadric", "center": [1, 2, 3], "coefficients": [1, -1, 1, 0, 0, 0, 0, 0, 0, -0.25],
-                    "clip_min": [-1.5, -1, -1.5], "clip_max": [1.5, 1, 1.5]})", 1.5});
+  c.agreement.push_back({"quadric",
+                         R"({"type": "quadric", "center": [1, 2, 3],
+                            "coefficients": [1, -1, 1, 0, 0, 0, 0, 0, 0, -0.25],
+                            "clip_min": [-1.5, -1, -1.5], "clip_max": [1.5, 1, 1.5]})",
+                         1.5});
   // uv = (0, 0) everywhere; uv' = (0.625, 0.375) -> texel (2, 1) = (0.375, 0.25, 0.375).
   c.uv.push_back({"QuadricUvIsZero",
                   R"({"position": [0, 0, 5], "look_at": [0, 0, 0]})",

@@ -89,7 +89,8 @@ PrimitiveCases make_ring_cases() {
   c.oracle = ring_oracle;
   c.shape = make_shape;
   c.families = add_ring;
-  c.agreement.push_back({"ring", R"({"type": "ring", "center": [1, 2, 3], "inner_radius": 0.4, "outer_radius": 1.2})", 1.2});
+  c.agreement.push_back({"ring",
+                         R"({"type": "ring", "center": [1, 2, 3], "inner_radius": 0.4, "outer_radius": 1.2})", 1.2});
   // inner 1, outer 2. From above at (0, 5, 1.625): p = (0, 0, 1.625).
   // u = (1.625 - 1)/(2 - 1) = 0.625; v = 0.5 + atan2(1.625, 0)/2pi = 0.75.
   // uv' = (0.625, 0.875) -> texel (2, 3) = (0.375, 0.5, 0.875).

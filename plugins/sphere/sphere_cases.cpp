@@ -61,7 +61,8 @@ PrimitiveCases make_sphere_cases() {
   c.oracle = sphere_oracle;
   c.shape = make_shape;
   c.families = add_sphere;
-  c.agreement.push_back({"sphere", R"({"type": "sphere", "center": [1, 2, 3], "radius": 1.3})", 1.3});
+  c.agreement.push_back({"sphere",
+                         R"({"type": "sphere", "center": [1, 2, 3], "radius": 1.3})", 1.3});
   // Straight down onto the north pole: p = (0, 1, 0), u = 0.5 + atan2(0, 0)/2pi
   // = 0.5, v = 0.5 - asin(1)/pi = 0; uv' = (0.625, 0.125) -> texel (2, 0) =
   // (0.375, 0.125, 0.125). (atan2 = pi would give u = 1 -> texel (0, 0).)
@@ -71,7 +72,8 @@ PrimitiveCases make_sphere_cases() {
                   R"({"type": "sphere", "radius": 1, "material": "m"})",
                   {0.375, 0.125, 0.125}});
   // Unit sphere: hits aim inside radius 0.9.
-  c.bench.push_back({{{"radius", {1.0}}}, prism::cases::bench_origins(4.0), [](BenchRng& r) { return r.in_ball(0.9); }, {}});
+  c.bench.push_back(
+      {{{"radius", {1.0}}}, prism::cases::bench_origins(4.0), [](BenchRng& r) { return r.in_ball(0.9); }, {}});
   return c;
 }
 

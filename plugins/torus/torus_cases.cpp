@@ -280,7 +280,8 @@ PrimitiveCases make_torus_cases() {
   c.oracle = torus_oracle;
   c.shape = make_shape;
   c.families = add_torus;
-  c.agreement.push_back({"torus", R"({"type": "torus", "center": [1, 2, 3], "major_radius": 1, "minor_radius": 0.25})", 1.25});
+  c.agreement.push_back({"torus",
+                         R"({"type": "torus", "center": [1, 2, 3], "major_radius": 1, "minor_radius": 0.25})", 1.25});
   // Unrotated, R = 1: rays from outside aim at a point within 0.03 of the
   // core circle: hits, grazes and near misses.
   c.agreement.push_back({"thin_torus",

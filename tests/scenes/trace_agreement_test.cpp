@@ -94,7 +94,8 @@ TEST_P(TraceAgreement, MatchesReferenceOnRandomRays) {
   std::sort(t_errors.begin(), t_errors.end());
   const double p99 = t_errors.empty() ? 0.0 : t_errors[size_t(0.99 * double(t_errors.size() - 1))];
   std::printf("%s on %s: %zu hits of %zu rays, id agreement %.4f %%, relative t error p99 %.3g, max %.3g\n",
-              primitive.name.c_str(), backend.c_str(), hits, rays.size(), 100.0 * double(same_id) / double(rays.size()), p99,
+              primitive.name.c_str(), backend.c_str(), hits, rays.size(),
+              100.0 * double(same_id) / double(rays.size()), p99,
               t_errors.empty() ? 0.0 : t_errors.back());
   EXPECT_GT(hits, rays.size() / 10) << "too few hits to measure anything";
   EXPECT_GE(double(same_id), 0.999 * double(rays.size()));
