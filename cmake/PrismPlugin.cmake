@@ -2,7 +2,8 @@
 #   prism_add_primitive_plugin(<type> SOURCES ... [SHARED <file> | GLSL <file>] [TESTS ...])
 # and builds libprism_primitive_<type>.so into the plugin folder, exactly as
 # a plugin outside the tree does against the installed package
-# (cmake/PrismPrimitivePlugin.cmake), plus its install rule and tests. The
+# (cmake/PrismPrimitivePlugin.cmake), plus its install rule, its tests and
+# its cases for the suites (<type>_cases.cpp, prism_add_primitive_cases). The
 # tests link the same sources directly (the object library), so they
 # exercise exactly the code the shared object exports.
 include(${CMAKE_CURRENT_LIST_DIR}/PrismPrimitivePlugin.cmake)
@@ -17,6 +18,10 @@ function(prism_add_primitive_plugin type)
     set(gpu_source GLSL ${ARG_GLSL})
   endif()
   prism_primitive_plugin_library(${type} SDK prism_sdk SOURCES ${ARG_SOURCES} ${gpu_source})
+  prism_add_primitive_cases(${type})
+  if(PRISM_PLUGIN_IS_EXAMPLE)  # built for a test only (tests/sdk): not installed, in no suite's list
+    return()
+  endif()
   install(TARGETS prism_primitive_${type} LIBRARY DESTINATION lib/prism)
   set_property(GLOBAL APPEND PROPERTY PRISM_PLUGIN_TARGETS prism_primitive_${type})
   if(PRISM_BUILD_TESTS AND ARG_TESTS)
@@ -25,6 +30,25 @@ function(prism_add_primitive_plugin type)
     target_link_libraries(${test} PRIVATE prism_sdk prism_test_support prism_test_main)
     gtest_discover_tests(${test} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS unit)
     prism_add_to_unit_suite(${test})
+  endif()
+endfunction()
+
+# A plugin's test cases: <type>_cases.cpp beside its CMakeLists.txt, when
+# there is one (tests/cases/primitive_cases.hpp), becomes
+# libprism_cases_<type>.so beside the plugin, where the suites find it; no
+# suite lists the types. Not installed.
+function(prism_add_primitive_cases type)
+  set(source ${CMAKE_CURRENT_SOURCE_DIR}/${type}_cases.cpp)
+  if(NOT PRISM_BUILD_TESTS OR NOT EXISTS ${source})
+    return()
+  endif()
+  set(output_dir "${PRISM_PLUGIN_OUTPUT_DIR}")
+  add_library(prism_cases_${type} MODULE ${source})
+  target_link_libraries(prism_cases_${type} PRIVATE prism_case_kit)
+  set_target_properties(prism_cases_${type} PROPERTIES PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY "${output_dir}")
+  set_property(GLOBAL APPEND PROPERTY PRISM_CASES_TARGETS prism_cases_${type})
+  if(NOT PRISM_PLUGIN_IS_EXAMPLE)
+    set_property(GLOBAL APPEND PROPERTY PRISM_CASES_TYPES ${type})
   endif()
 endfunction()
 
@@ -49,7 +73,8 @@ endfunction()
 function(prism_define_unit_suite)
   get_property(tests GLOBAL PROPERTY PRISM_UNIT_TEST_TARGETS)
   get_property(plugins GLOBAL PROPERTY PRISM_PLUGIN_TARGETS)
-  add_custom_target(prism_unit_suite DEPENDS ${tests} ${plugins} prism_oiio)
+  get_property(cases GLOBAL PROPERTY PRISM_CASES_TARGETS)
+  add_custom_target(prism_unit_suite DEPENDS ${tests} ${plugins} ${cases} prism_oiio)
 endfunction()
 
 # Adds every subfolder of the calling folder that has a CMakeLists.txt, in

@@ -1,7 +1,9 @@
 // Microbenchmarks of each primitive plugin's CPU intersector, driven through
 // its descriptor exactly as the core calls it: the plugin .so is loaded by
 // prism::Registry, a record is packed by `validate` + `pack`, and rays are
-// given in the local frame.
+// given in the local frame. The objects and their rays are each primitive's
+// bench cases, from its folder (tests/cases/primitive_cases.hpp): a
+// primitive added with its cases is benchmarked with no change here.
 //
 //   intersect/<type>/{hit,miss}        desc->intersect, one call per ray
 //   intersect_batch/<type>/{hit,miss}  desc->intersect_batch over the whole batch
@@ -9,7 +11,7 @@
 //
 // One iteration handles a batch of kRays (1024) rays; the counters give
 // rays/s (items_per_second) and time_per_ray (CPU time per ray). Rays are
-// deterministic (own splitmix64 RNG, fixed seeds). Hit rays aim at a point inside a solid or on
+// deterministic (own splitmix64 RNG, a fixed seed per type). Hit rays aim at a point inside a solid or on
 // a surface, so they must hit: the setup checks every one and the benchmark
 // fails (SkipWithError) if one misses. Miss rays start at the same places and
 // aim into the object's bounding box grown by 1.5x (the rays a BVH would hand
@@ -31,6 +33,7 @@
 
 #include <glm/glm.hpp>
 
+#include "primitive_cases.hpp"
 #include "prism/primitive_abi.h"
 #include "prism/registry.hpp"
 #include "spheres_scene.hpp"
@@ -40,100 +43,33 @@ namespace {
 constexpr size_t kRays = 1024;
 constexpr uint64_t kSeed = 0x5052534d42454e43ull;  // "PRSMBENC"
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kPi = 3.14159265358979323846;
 
-// The portable generator of bench/spheres_scene.hpp, with directions.
-struct Rng : prism::bench_tools::SplitMix64 {
-  glm::dvec3 unit() {
-    const double z = uniform(-1.0, 1.0), phi = uniform(0.0, 2.0 * kPi);
-    const double s = std::sqrt(std::max(0.0, 1.0 - z * z));
-    return {s * std::cos(phi), z, s * std::sin(phi)};
-  }
-  glm::dvec3 in_ball(double radius) { return unit() * (radius * std::cbrt(uniform(0.0, 1.0))); }
-};
+using prism::cases::BenchCase;
+using Rng = prism::cases::BenchRng;
+using prism::cases::bench_ray;
 
-PrismRay make_ray(const glm::dvec3& origin, const glm::dvec3& target) {
-  const glm::dvec3 d = glm::normalize(target - origin);
-  return PrismRay{{origin.x, origin.y, origin.z}, {d.x, d.y, d.z}};
-}
-
-// One benchmarked object: its field values and how rays are aimed at it.
+// One benchmarked object: a primitive's bench case (from its folder).
 struct Case {
-  const char* type;
-  std::vector<std::pair<const char*, std::vector<double>>> fields;  // others take their defaults
-  std::function<glm::dvec3(Rng&)> origin;      // where every ray starts
-  std::function<glm::dvec3(Rng&)> hit_target;  // a point inside the solid or on the surface
-  // A candidate miss ray; empty: aim at a point of the bounding box grown by 1.5x.
-  std::function<PrismRay(Rng&)> miss_candidate;
+  std::string type;
+  const BenchCase* bench;
 };
 
-// Origins on a sphere of `radius` about the origin with |dir.y| >= min_abs_y
-// (keeps rays off a ring's plane); `upper`: dir.y >= min_abs_y.
-std::function<glm::dvec3(Rng&)> origins(double radius, double min_abs_y = 0.0, bool upper = false) {
-  return [=](Rng& rng) {
-    for (;;) {
-      const glm::dvec3 u = rng.unit();
-      if ((upper ? u.y : std::abs(u.y)) >= min_abs_y) return radius * u;
-    }
-  };
-}
-
+// Every primitive's bench cases (tests/cases/primitive_cases.hpp), by type.
 std::vector<Case> cases() {
   std::vector<Case> c;
-  // Unit sphere: hits aim inside radius 0.9.
-  c.push_back({"sphere", {{"radius", {1.0}}}, origins(4.0), [](Rng& r) { return r.in_ball(0.9); }, {}});
-  // Plane y = 0, unbounded: hits go down onto the disk |p| < 4, misses go up.
-  c.push_back({"plane",
-               {{"point", {0, 0, 0}}, {"normal", {0, 1, 0}}},
-               origins(5.0, 0.2, true),
-               [](Rng& r) {
-                 const double a = r.uniform(0, 2 * kPi), s = 4.0 * std::sqrt(r.uniform(0, 1));
-                 return glm::dvec3(s * std::cos(a), 0.0, s * std::sin(a));
-               },
-               [](Rng& r) {
-                 const glm::dvec3 o = origins(5.0, 0.2, true)(r);
-                 glm::dvec3 d = r.unit();
-                 d.y = std::abs(d.y);
-                 return make_ray(o, o + d);
-               }});
-  // Box 2 x 1 x 1.5: hits aim inside the box shrunk by 0.9.
-  c.push_back({"box", {{"half_size", {1.0, 0.5, 0.75}}}, origins(5.0), [](Rng& r) {
-                 return glm::dvec3(r.uniform(-0.9, 0.9), r.uniform(-0.45, 0.45), r.uniform(-0.675, 0.675));
-               }, {}});
-  // Torus R = 1, r = 0.25: hits aim at the tube's centre circle; misses include the hole.
-  c.push_back({"torus", {{"major_radius", {1.0}}, {"minor_radius", {0.25}}}, origins(5.0), [](Rng& r) {
-                 const double a = r.uniform(0, 2 * kPi);
-                 return glm::dvec3(std::cos(a), 0.0, std::sin(a));
-               }, {}});
-  // Ring 0.5 <= |p| <= 1 in y = 0, seen from |dir.y| >= 0.2: hits aim at the annulus.
-  c.push_back({"ring", {{"inner_radius", {0.5}}, {"outer_radius", {1.0}}}, origins(4.0, 0.2), [](Rng& r) {
-                 const double a = r.uniform(0, 2 * kPi), s = std::sqrt(r.uniform(0.55 * 0.55, 0.95 * 0.95));
-                 return glm::dvec3(s * std::cos(a), 0.0, s * std::sin(a));
-               }, {}});
-  // Quadric: the hyperboloid of one sheet x^2 - y^2 + z^2 = 1, clipped to |y| <= 1.
-  c.push_back({"quadric",
-               {{"coefficients", {1, -1, 1, 0, 0, 0, 0, 0, 0, -1}}, {"clip_min", {-2, -1, -2}}, {"clip_max", {2, 1, 2}}},
-               origins(6.0),
-               [](Rng& r) {
-                 const double y = r.uniform(-0.95, 0.95), a = r.uniform(0, 2 * kPi), s = std::sqrt(1 + y * y);
-                 return glm::dvec3(s * std::cos(a), y, s * std::sin(a));
-               },
-               {}});
-  // Open tube radius 1, 0 <= y <= 2: hits aim at points of the tube.
-  c.push_back({"cylinder", {{"radius", {1.0}}, {"height", {2.0}}}, [](Rng& r) {
-                 return glm::dvec3(0, 1, 0) + origins(5.0)(r);
-               }, [](Rng& r) {
-                 const double y = r.uniform(0.1, 1.9), a = r.uniform(0, 2 * kPi);
-                 return glm::dvec3(std::cos(a), y, std::sin(a));
-               }, {}});
-  // Open cone, apex at 0, radius 1 at y = 2: hits aim at points of the cone.
-  c.push_back({"cone", {{"radius", {1.0}}, {"height", {2.0}}}, [](Rng& r) {
-                 return glm::dvec3(0, 1, 0) + origins(5.0)(r);
-               }, [](Rng& r) {
-                 const double y = r.uniform(0.1, 1.9), a = r.uniform(0, 2 * kPi), s = y / 2.0;
-                 return glm::dvec3(s * std::cos(a), y, s * std::sin(a));
-               }, {}});
+  for (const prism::cases::PrimitiveCases* cases : prism::cases::all_primitive_cases())
+    for (const BenchCase& bench : cases->bench) c.push_back({cases->type, &bench});
   return c;
+}
+
+// A seed of the type's own (FNV-1a of its name), so adding a type changes no other type's rays.
+uint64_t seed_for(const std::string& type) {
+  uint64_t h = 14695981039346656037ull ^ kSeed;
+  for (char ch : type) {
+    h ^= uint8_t(ch);
+    h *= 1099511628211ull;
+  }
+  return h;
 }
 
 // A packed object of one plugin with its ray batches; `error` set when the
@@ -158,7 +94,7 @@ std::optional<std::vector<double>> field_values(const PrismPrimitiveDesc& desc, 
   for (uint32_t f = 0; f < desc.field_count; ++f) {
     const PrismField& field = desc.fields[f];
     const std::vector<double>* given = nullptr;
-    for (const auto& [name, v] : c.fields)
+    for (const auto& [name, v] : c.bench->fields)
       if (name == std::string(field.name)) given = &v;
     if (given) {
       if (given->size() != field.count) {
@@ -176,7 +112,7 @@ std::optional<std::vector<double>> field_values(const PrismPrimitiveDesc& desc, 
   return values;
 }
 
-void setup(Fixture& fx, const Case& c, prism::Registry& registry, uint64_t seed) {
+void setup(Fixture& fx, const Case& c, prism::Registry& registry) {
   fx.type = c.type;
   try {
     fx.plugin = registry.primitive(c.type);
@@ -196,10 +132,11 @@ void setup(Fixture& fx, const Case& c, prism::Registry& registry, uint64_t seed)
   fx.record.assign((desc.record_size + sizeof(glm::dvec4) - 1) / sizeof(glm::dvec4), glm::dvec4(0.0));
   desc.pack(values->data(), fx.record.data());
 
-  Rng rng{{seed}};
-  for (size_t i = 0; i < kRays; ++i) fx.hit_rays.push_back(make_ray(c.origin(rng), c.hit_target(rng)));
+  const BenchCase& bench = *c.bench;
+  Rng rng{{seed_for(c.type)}};
+  for (size_t i = 0; i < kRays; ++i) fx.hit_rays.push_back(bench_ray(bench.origin(rng), bench.hit_target(rng)));
 
-  std::function<PrismRay(Rng&)> candidate = c.miss_candidate;
+  std::function<PrismRay(Rng&)> candidate = bench.miss_candidate;
   if (!candidate) {
     double lo[3], hi[3];
     if (!desc.bounds(fx.rec(), lo, hi)) {
@@ -208,10 +145,10 @@ void setup(Fixture& fx, const Case& c, prism::Registry& registry, uint64_t seed)
     }
     const glm::dvec3 mid = 0.5 * (glm::dvec3(lo[0], lo[1], lo[2]) + glm::dvec3(hi[0], hi[1], hi[2]));
     const glm::dvec3 half = 0.75 * (glm::dvec3(hi[0], hi[1], hi[2]) - glm::dvec3(lo[0], lo[1], lo[2]));
-    candidate = [&c, mid, half](Rng& r) {
-      const glm::dvec3 o = c.origin(r);
+    candidate = [&bench, mid, half](Rng& r) {
+      const glm::dvec3 o = bench.origin(r);
       const glm::dvec3 target = mid + half * glm::dvec3(r.uniform(-1, 1), r.uniform(-1, 1), r.uniform(-1, 1));
-      return make_ray(o, target);
+      return bench_ray(o, target);
     };
   }
   PrismHit scratch{};
@@ -323,7 +260,7 @@ int main(int argc, char** argv) {
   prism::Registry registry;
   static const std::vector<Case> all = cases();
   static std::vector<Fixture> fixtures(all.size());
-  for (size_t i = 0; i < all.size(); ++i) setup(fixtures[i], all[i], registry, kSeed + i);
+  for (size_t i = 0; i < all.size(); ++i) setup(fixtures[i], all[i], registry);
 
   for (const Fixture& fx : fixtures) {
     for (bool hit : {true, false}) {

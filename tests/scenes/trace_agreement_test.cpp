@@ -1,4 +1,5 @@
-// `trace` on random rays agrees with the reference backend, per primitive:
+// `trace` on random rays agrees with the reference backend, per primitive
+// (each primitive's objects come from its folder: tests/cases/primitive_cases.hpp):
 // the same object id on at least 99.9 % of rays and a relative t error
 // whose 99th percentile is at most 1e-4. Each primitive is rotated and off
 // the origin; rays start 2 to 50 units away (and some inside the bounds)
@@ -10,42 +11,38 @@
 #include <cmath>
 #include <random>
 
+#include "primitive_cases.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene_loader.hpp"
 #include "test_support.hpp"
 
+namespace prism::cases {
+// gtest shows a case by its name (not its bytes).
+void PrintTo(const AgreementCase& c, std::ostream* os) { *os << c.name; }
+}  // namespace prism::cases
+
 namespace {
 
-struct PrimitiveCase {
-  const char* name;
-  const char* object;  // the JSON object, centred at (1, 2, 3)
-  double size;         // roughly the object's radius, to aim rays
-  bool aim_at_tube = false;  // an unrotated torus with R = 1: aim at its core circle
-};
+using prism::cases::AgreementCase;
 
-const PrimitiveCase kCases[] = {
-    {"sphere", R"({"type": "sphere", "center": [1, 2, 3], "radius": 1.3})", 1.3},
-    {"plane", R"({"type": "plane", "point": [1, 2, 3], "normal": [0.2, 1, -0.3]})", 2.0},
-    {"box", R"({"type": "box", "center": [1, 2, 3], "half_size": [1, 0.5, 0.7]})", 1.2},
-    {"torus", R"({"type": "torus", "center": [1, 2, 3], "major_radius": 1, "minor_radius": 0.25})", 1.25},
-    {"thin_torus", R"({"type": "torus", "center": [1, 2, 3], "major_radius": 1, "minor_radius": 0.01})", 1.0, true},
-    {"ring", R"({"type": "ring", "center": [1, 2, 3], "inner_radius": 0.4, "outer_radius": 1.2})", 1.2},
-    {"quadric", R"({"type": "quadric", "center": [1, 2, 3], "coefficients": [1, -1, 1, 0, 0, 0, 0, 0, 0, -0.25],
-                    "clip_min": [-1.5, -1, -1.5], "clip_max": [1.5, 1, 1.5]})", 1.5},
-    {"cylinder", R"({"type": "cylinder", "center": [1, 2, 3], "radius": 0.8, "height": 1.6})", 1.2},
-    {"cone", R"({"type": "cone", "center": [1, 2, 3], "radius": 0.8, "height": 1.6})", 1.2},
-};
+// Every primitive's agreement cases, from its folder (primitive_cases.hpp).
+std::vector<AgreementCase> all_cases() {
+  std::vector<AgreementCase> all;
+  for (const prism::cases::PrimitiveCases* cases : prism::cases::all_primitive_cases())
+    all.insert(all.end(), cases->agreement.begin(), cases->agreement.end());
+  return all;
+}
 
-std::string scene_for(const PrimitiveCase& c) {
+std::string scene_for(const AgreementCase& c) {
   std::string object = c.object;
-  // Rotate every transformable primitive so the local frame is exercised.
-  if (std::string(c.name) != "plane" && !c.aim_at_tube)
+  // Rotate the primitive (unless the case says not to) so the local frame is exercised.
+  if (c.rotate)
     object.insert(object.size() - 1, R"(, "rotation": {"axis": [1, 2, 0.5], "degrees": 37})");
   return std::string(R"({"prism": 1, "camera": {"position": [0, 0, 10], "look_at": [0, 0, 0]}, "objects": [)") +
          object + "]}";
 }
 
-std::vector<prism::TraceQuery> random_rays(const PrimitiveCase& c, int count) {
+std::vector<prism::TraceQuery> random_rays(const AgreementCase& c, int count) {
   std::mt19937_64 rng(12345);
   std::uniform_real_distribution<double> unit(-1.0, 1.0), distance(2.0, 50.0);
   const glm::dvec3 centre(1, 2, 3);
@@ -62,11 +59,7 @@ std::vector<prism::TraceQuery> random_rays(const PrimitiveCase& c, int count) {
                                : centre + distance(rng) * c.size * random_direction();
     glm::dvec3 target = inside ? origin + random_direction()
                                : centre + 1.2 * c.size * glm::dvec3(unit(rng), unit(rng), unit(rng));
-    if (c.aim_at_tube && !inside) {  // a point within 0.03 of the core circle: hits, grazes and near misses
-      const double angle = 3.14159265358979 * unit(rng);
-      target = centre + glm::dvec3(std::cos(angle), 0.0, std::sin(angle)) +
-               0.03 * glm::dvec3(unit(rng), unit(rng), unit(rng));
-    }
+    if (c.aim && !inside) target = c.aim(centre, [&] { return unit(rng); });
     rays.push_back({origin, glm::normalize(target - origin), 0.0});
   }
   return rays;
@@ -79,7 +72,7 @@ std::vector<prism::TraceResult> trace(prism::Registry& registry, const std::stri
   return instance->trace(rays);
 }
 
-class TraceAgreement : public testing::TestWithParam<std::tuple<std::string, PrimitiveCase>> {};
+class TraceAgreement : public testing::TestWithParam<std::tuple<std::string, AgreementCase>> {};
 
 TEST_P(TraceAgreement, MatchesReferenceOnRandomRays) {
   const auto& [backend, primitive] = GetParam();
@@ -101,7 +94,8 @@ TEST_P(TraceAgreement, MatchesReferenceOnRandomRays) {
   std::sort(t_errors.begin(), t_errors.end());
   const double p99 = t_errors.empty() ? 0.0 : t_errors[size_t(0.99 * double(t_errors.size() - 1))];
   std::printf("%s on %s: %zu hits of %zu rays, id agreement %.4f %%, relative t error p99 %.3g, max %.3g\n",
-              primitive.name, backend.c_str(), hits, rays.size(), 100.0 * double(same_id) / double(rays.size()), p99,
+              primitive.name.c_str(), backend.c_str(), hits, rays.size(),
+              100.0 * double(same_id) / double(rays.size()), p99,
               t_errors.empty() ? 0.0 : t_errors.back());
   EXPECT_GT(hits, rays.size() / 10) << "too few hits to measure anything";
   EXPECT_GE(double(same_id), 0.999 * double(rays.size()));
@@ -117,7 +111,7 @@ std::string name_of(const testing::TestParamInfo<TraceAgreement::ParamType>& inf
 
 INSTANTIATE_TEST_SUITE_P(Primitives, TraceAgreement,
                          testing::Combine(testing::ValuesIn(prism::test::backends_except("reference")),
-                                          testing::ValuesIn(kCases)),
+                                          testing::ValuesIn(all_cases())),
                          name_of);
 
 }  // namespace

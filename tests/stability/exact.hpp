@@ -5,10 +5,12 @@
 //
 // Objects are given as the scene file gives them (one entry of "objects"),
 // numbers read as double (as Prism reads them) and then widened exactly.
+// Each type's own part comes from its folder (plugins/<type>/<type>_cases.cpp).
 #pragma once
 
 #include <quadmath.h>
 
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -20,6 +22,8 @@ using real = __float128;
 struct Vec {
   real x = 0, y = 0, z = 0;
 };
+
+struct OracleShape;  // a type's own part of the oracle (exact_kit.hpp)
 
 struct ExactRay {
   Vec origin;
@@ -36,7 +40,8 @@ struct ExactHit {
 class ExactObject {
  public:
   // `object`: {"type": "torus", "center": [...], "rotation": {...}, ...}.
-  // Throws std::invalid_argument for a type or field it does not know.
+  // Throws std::invalid_argument for a type or field it does not know (a
+  // type is known when a case module has its oracle: primitive_cases.hpp).
   explicit ExactObject(const nlohmann::json& object);
 
   // The first hit with t > ray.tmin, per the spec's definition of the shape
@@ -56,7 +61,7 @@ class ExactObject {
 
  private:
   std::string type_;
-  nlohmann::json object_;
+  std::shared_ptr<const OracleShape> shape_;
   Vec center_;
   real rotation_[3][3];  // local -> world
 };

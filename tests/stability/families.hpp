@@ -44,7 +44,8 @@ struct Family {
 
 enum class Mode { quick, full };
 
-// The primitive types the suite covers, in a fixed order.
+// The primitive types the suite covers: those whose case module
+// (tests/cases/primitive_cases.hpp) has an oracle and an object, by name.
 const std::vector<std::string>& primitive_types();
 
 // Every family of `primitive` (of every type when empty), in `mode`.

@@ -114,7 +114,7 @@ bool require_backend_or_skip(const std::string& name) {
 }
 
 void BackendTest::SetUp() {
-  const std::string& name = GetParam();
+  const std::string name = backend_name();
   if (!require_backend_or_skip(name)) return;
   plugin_ = registry_.backend(name);
 }

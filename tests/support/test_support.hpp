@@ -117,6 +117,9 @@ std::string png_claiming_size(uint32_t width, uint32_t height);
 class BackendTest : public testing::TestWithParam<std::string> {
  protected:
   void SetUp() override;
+  // The backend under test: the test's parameter, unless a test registered
+  // by hand (testing::RegisterTest, no parameter) says otherwise.
+  virtual std::string backend_name() const { return GetParam(); }
 
   // Parses a scene; relative texture paths resolve against `base_dir`.
   Scene load(const std::string& json, const std::filesystem::path& base_dir = ".");
