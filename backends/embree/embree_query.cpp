@@ -397,6 +397,7 @@ void EmbreeQuery::start_views() {
   // its light: room for hit points out to ~10x the scene's extent, or a
   // twentieth of a median object, whichever is larger.
   views.light_reach = std::max(1e-3 * (1 + largest), 0.05 * *middle);
+  views.extent = largest;
   views_ = std::move(views);
 }
 
@@ -421,7 +422,7 @@ void EmbreeQuery::prepare_views(const glm::dvec3& eye) {
     if (lights[k].type == Light::Type::Point)
       v.points[k].emplace(lights[k].position, v.spheres, v.light_reach);
     else
-      v.parallels[k].emplace(-lights[k].direction, v.spheres, v.light_reach);
+      v.parallels[k].emplace(-lights[k].direction, v.spheres, v.extent);
   }
 }
 

@@ -121,6 +121,7 @@ class EmbreeQuery final : public ObjectQuery {
     std::vector<BoundSphere> spheres;  // every bounded object
     std::vector<int32_t> unbounded;    // tested for every ray
     double light_reach = 0;            // how far a shadow ray may end from its point light
+    double extent = 0;                 // the largest |coordinate| of the objects and lights
     glm::dvec3 eye{0};
     std::optional<PointBuffer> camera;
     std::vector<Light> lights;                         // as the buffers below were built

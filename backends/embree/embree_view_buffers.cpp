@@ -172,19 +172,19 @@ PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> sp
 size_t PointBuffer::cell_of(const glm::dvec3& dir) const {
   const double ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
   const int axis = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
-  const FaceFrame f = face_frame(2 * axis + (dir[axis] < 0 ? 1 : 0));
+  const int face = 2 * axis + (dir[axis] < 0 ? 1 : 0);
+  const FaceFrame f = face_frame(face);
   const double major = std::abs(dir[axis]);
   auto index = [&](double c) { return std::clamp(int((c / major + 1) * 0.5 * resolution_), 0, resolution_ - 1); };
-  const int face = 2 * axis + (dir[axis] < 0 ? 1 : 0);
   return size_t((face * resolution_ + index(dir[f.v_axis])) * resolution_ + index(dir[f.u_axis]));
 }
 
-ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double scale) : dir_(dir) {
+ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double extent) : dir_(dir) {
   const glm::dvec3 d = glm::normalize(dir);
   const glm::dvec3 helper = std::abs(d.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
   across_[0] = glm::normalize(glm::cross(d, helper));
   across_[1] = glm::normalize(glm::cross(d, across_[0]));
-  origin_limit_ = 1e3 * (1 + scale);
+  origin_limit_ = 1e3 * (1 + extent);
   double far = origin_limit_;
   for (const BoundSphere& s : spheres) far = std::max(far, max_abs(s.center) + s.radius);
   const double margin = 1e-12 * 4 * far;  // (|o| + |c| + r), each at most `far` per component, sqrt(3) < 2

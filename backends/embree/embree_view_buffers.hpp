@@ -39,7 +39,6 @@ class CellLists {
   std::span<const int32_t> operator[](size_t cell) const {
     return {ids_.data() + start_[cell], ids_.data() + start_[cell + 1]};
   }
-  size_t cell_count() const { return start_.size() - 1; }
 
  private:
   std::vector<uint32_t> start_{0};
@@ -65,10 +64,12 @@ class PointBuffer {
   CellLists cells_;
 };
 
-// Rays along one direction (exactly `dir`): a grid over the plane across it.
+// Rays along one direction (exactly `dir`): a grid over the plane across it,
+// for origins up to 1000 (1 + extent) per coordinate, `extent` the scene's
+// largest |coordinate|.
 class ParallelBuffer {
  public:
-  ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double scale);
+  ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double extent);
   const glm::dvec3& dir() const { return dir_; }
   // Whether origin is near enough for the lists' margin (see the .cpp).
   bool covers(const glm::dvec3& origin) const;
