@@ -57,8 +57,21 @@ PrismRay prism_camera_ray(int i, int j, dvec2 offset) {
   return ray;
 }
 
+// The work group's block of the tile. Work groups are handed out in a
+// scrambled order (group k renders block k * P mod n, P a prime above any
+// group count, so the map is one to one): a CPU driver gives each thread a
+// contiguous run of groups, and in row order one thread would get the sky
+// while another gets the scene. A tile has at most 2^18 samples, so at most
+// 4096 groups of 64: k * P stays below 2^32.
+ivec2 prism_block() {
+  const uint P = 104729u;
+  uint n = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+  uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * P % n;
+  return ivec2(k % gl_NumWorkGroups.x, k / gl_NumWorkGroups.x);
+}
+
 void main() {
-  ivec2 local = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 local = prism_block() * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy);
   ivec2 pixel = PRISM_TILE_ORIGIN.xy + local;
   if (local.x >= PRISM_TILE_ORIGIN.z || local.y >= PRISM_TILE_ORIGIN.w) return;
   for (int k = 0; k < PRISM_RAY_KINDS; ++k) prism_ray_counts[k] = 0u;

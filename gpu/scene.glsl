@@ -110,26 +110,10 @@ PrismRay prism_to_local(uint i, PrismRay ray) {
   return local;
 }
 
-// Tests object i against the best hit so far: t strictly closer, or equal t
-// and a lower object id (the format's tie rule).
-void prism_test_object(uint i, PrismRay ray, double tmin, inout PrismClosest best) {
-  PrismHit h;
-  uvec4 info = prism_objects[i].info;
-  if (!prism_intersect_type(info.y, info.x, prism_to_local(i, ray), tmin, best.t, h)) return;
-  int id = prism_objects[i].id.x;
-  if (h.t < best.t || id < best.id) {
-    best.t = h.t;
-    best.id = id;
-    best.object = i;
-    best.hit = h;
-  }
-}
-
-bool prism_hits_object(uint i, PrismRay ray, double tmax) {
-  PrismHit h;
-  uvec4 info = prism_objects[i].info;
-  return prism_intersect_type(info.y, info.x, prism_to_local(i, ray), 0.0LF, tmax, h);
-}
+// A world ray in object i's local frame is tested by one call of the
+// generated type dispatch: a GPU compiler inlines every call, so each call
+// site of prism_intersect_type is a copy of every intersector in the kernel.
+// prism_traverse therefore has exactly one, for closest and any hit alike.
 
 // 1/d with zero components replaced by a huge finite value, so the slab test
 // never forms 0 * inf.
@@ -152,53 +136,73 @@ bool prism_enter_node(uint node, dvec3 o, dvec3 inv, double tmin, double tmax, o
 
 #define PRISM_BVH_STACK 64
 
-// Closest object hit with t > tmin (ties: lower id), or whether any object
-// lies at 0 < t <= tmax when `any_hit` (then `best` is left as it was).
+// Tests objects first .. first + count - 1: the closest hit with t > tmin
+// into `best` (ties: the format's rule, lower object id at equal t), or, when
+// `any_hit`, true as soon as one lies at tmin < t <= tmax.
+bool prism_test_objects(uint first, uint count, PrismRay ray, double tmin, double tmax, bool any_hit,
+                        inout PrismClosest best) {
+  for (uint i = first; i < first + count; ++i) {
+    PrismHit h;
+    uvec4 info = prism_objects[i].info;
+    if (!prism_intersect_type(info.y, info.x, prism_to_local(i, ray), tmin, any_hit ? tmax : best.t, h)) continue;
+    if (any_hit) return true;
+    int id = prism_objects[i].id.x;
+    if (h.t < best.t || id < best.id) {
+      best.t = h.t;
+      best.id = id;
+      best.object = i;
+      best.hit = h;
+    }
+  }
+  return false;
+}
+
+// Closest object hit or any hit (see prism_test_objects): the leaves a BVH
+// walk reaches, nearest child first, then the unbounded objects (planes,
+// unclipped quadrics).
 bool prism_traverse(PrismRay ray, double tmin, double tmax, bool any_hit, inout PrismClosest best) {
-  if (prism_frame.counts.w > 0) {
-    dvec3 inv = prism_inverse_dir(ray.dir);
-    uint stack[PRISM_BVH_STACK];
-    int top = 0;
-    uint node = 0u;
-    double tnear;
-    bool visit = prism_enter_node(0u, ray.origin, inv, tmin, any_hit ? tmax : best.t, tnear);
+  dvec3 inv = prism_inverse_dir(ray.dir);
+  uint stack[PRISM_BVH_STACK];
+  int top = 0;
+  uint node = 0u;
+  double tnear;
+  bool visit = prism_frame.counts.w > 0 && prism_enter_node(0u, ray.origin, inv, tmin, any_hit ? tmax : best.t, tnear);
+  bool unbounded_done = false;
+  for (;;) {
+    // The next run of objects: a leaf the walk reaches, else the unbounded ones once.
+    uint first = 0u, count = 0u;
     while (visit || top > 0) {
       if (!visit) {
         node = stack[--top];
         visit = true;
       }
-      uint count = prism_nodes[node].count, first = prism_nodes[node].first;
-      if (count > 0u) {
-        for (uint i = first; i < first + count; ++i) {
-          if (any_hit) {
-            if (prism_hits_object(i, ray, tmax)) return true;
-          } else {
-            prism_test_object(i, ray, tmin, best);
-          }
-        }
+      uint node_count = prism_nodes[node].count, node_first = prism_nodes[node].first;
+      if (node_count > 0u) {
+        first = node_first;
+        count = node_count;
         visit = false;
-        continue;
+        break;
       }
       double limit = any_hit ? tmax : best.t, tl, tr;
-      bool left = prism_enter_node(first, ray.origin, inv, tmin, limit, tl);
-      bool right = prism_enter_node(first + 1u, ray.origin, inv, tmin, limit, tr);
+      bool left = prism_enter_node(node_first, ray.origin, inv, tmin, limit, tl);
+      bool right = prism_enter_node(node_first + 1u, ray.origin, inv, tmin, limit, tr);
       if (left && right) {
         bool left_first = tl <= tr;
-        stack[top++] = left_first ? first + 1u : first;
-        node = left_first ? first : first + 1u;
+        stack[top++] = left_first ? node_first + 1u : node_first;
+        node = left_first ? node_first : node_first + 1u;
       } else if (left || right) {
-        node = left ? first : first + 1u;
+        node = left ? node_first : node_first + 1u;
       } else {
         visit = false;
       }
     }
-  }
-  for (uint i = uint(prism_frame.counts.y); i < uint(prism_frame.counts.x); ++i) {
-    if (any_hit) {
-      if (prism_hits_object(i, ray, tmax)) return true;
-    } else {
-      prism_test_object(i, ray, tmin, best);
+    if (count == 0u) {
+      if (unbounded_done) break;
+      unbounded_done = true;
+      first = uint(prism_frame.counts.y);
+      count = uint(prism_frame.counts.x) - first;
     }
+    if (prism_test_objects(first, count, ray, tmin, tmax, any_hit, best)) return true;
   }
   return false;
 }
