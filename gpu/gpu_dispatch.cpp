@@ -6,13 +6,14 @@
 
 namespace prism::gpu {
 
-KernelOptions kernel_options(bool trace, const char* api_glue) {
+KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primitives) {
   KernelOptions options;
   options.trace = trace;
   options.all_features = all_features_forced();
   options.api_glue = api_glue;
   options.local_size_x = trace ? kTraceLocalSize : kRenderLocalSize;
   options.local_size_y = trace ? 1 : kRenderLocalSize;
+  options.float_primitives = float_primitives;
   return options;
 }
 

@@ -20,7 +20,7 @@ layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismTraceBuffer { PrismTr
 void main() {
   uint i = gl_GlobalInvocationID.x + uint(PRISM_TILE_ORIGIN.x);
   if (i >= uint(prism_frame.flags.y)) return;
-  PrismRay ray;
+  PrismWorldRay ray;
   ray.origin = prism_trace_rays[i].origin_tmin.xyz;
   ray.dir = prism_trace_rays[i].dir.xyz;
   PrismClosest hit = prism_closest(ray, prism_trace_rays[i].origin_tmin.w);
@@ -47,11 +47,11 @@ layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismOutputBuffer {
 };
 
 // The format's camera ray through pixel (i, j) at sample offset `offset`.
-PrismRay prism_camera_ray(int i, int j, dvec2 offset) {
+PrismWorldRay prism_camera_ray(int i, int j, dvec2 offset) {
   double width = double(prism_frame.size.x), height = double(prism_frame.size.y);
   double u = ((double(i) + offset.x) / width * 2.0LF - 1.0LF) * prism_frame.tan_half_fov * prism_frame.aspect;
   double v = (1.0LF - (double(j) + offset.y) / height * 2.0LF) * prism_frame.tan_half_fov;
-  PrismRay ray;
+  PrismWorldRay ray;
   ray.origin = prism_frame.camera_position.xyz;
   ray.dir = normalize(prism_frame.camera_forward.xyz + u * prism_frame.camera_right.xyz + v * prism_frame.camera_up.xyz);
   return ray;
@@ -79,7 +79,7 @@ void main() {
   vec3 sum = vec3(0.0);
   PrismSample first;
   for (int k = 0; k < prism_frame.size.z; ++k) {
-    PrismRay ray = prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]);
+    PrismWorldRay ray = prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]);
     PrismSample s = prism_trace_sample(ray, prism_frame.size.w, k == 0 && prism_frame.flags.x != 0);
     if (k == 0) first = s;
     sum += s.radiance;

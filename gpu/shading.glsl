@@ -116,15 +116,15 @@ struct PrismShadingPoint {
   double epsilon;
 };
 
-PrismRay prism_spawn(PrismShadingPoint s, dvec3 dir, double side) {
-  PrismRay r;
+PrismWorldRay prism_spawn(PrismShadingPoint s, dvec3 dir, double side) {
+  PrismWorldRay r;
   r.origin = s.position + side * s.epsilon * s.n;
   r.dir = dir;
   return r;
 }
 
-PrismShadingPoint prism_shading_point(PrismRay ray, PrismClosest hit) {
-  PrismSurface sp = prism_world_surface(ray, hit);
+PrismShadingPoint prism_shading_point(PrismWorldRay ray, PrismClosest hit) {
+  PrismWorldSurface sp = prism_world_surface(ray, hit);
   PrismShadingPoint s;
   s.position = sp.point;
   s.front = dot(ray.dir, sp.normal) < 0.0LF;
@@ -143,13 +143,14 @@ PrismShadingPoint prism_shading_point(PrismRay ray, PrismClosest hit) {
     s.alpha = texel.a;
   }
 #endif
-  s.epsilon = 1e-4LF * (1.0LF + prism_max_abs_component(s.position));
+  dvec3 p = abs(s.position);
+  s.epsilon = 1e-4LF * (1.0LF + max(p.x, max(p.y, p.z)));
   return s;
 }
 
 bool prism_shadowed(dvec3 origin, dvec3 to_light, double distance) {
   ++prism_ray_counts[PRISM_RAY_SHADOW];
-  PrismRay r;
+  PrismWorldRay r;
   r.origin = origin;
   r.dir = to_light;
   return prism_occluded(r, distance);
@@ -212,7 +213,7 @@ struct PrismSample {
 // first hit's local light only, weight w F); the refracted ray waits in
 // `after` (weight w (1 - F)) and carries on from the same depth once the
 // Shade1 ray is done, so sums, notes and counts happen in the format's order.
-PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_path) {
+PrismSample prism_trace_sample(PrismWorldRay camera_ray, int max_depth, bool want_path) {
   prism_hashing = want_path;
   prism_hash = 2166136261u;
   PrismSample result;
@@ -221,11 +222,11 @@ PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_pat
   result.first_normal = dvec3(0.0LF);
   result.first_albedo = vec3(0.0);
   vec3 w = vec3(1.0), radiance = vec3(0.0);
-  PrismRay ray = camera_ray;
+  PrismWorldRay ray = camera_ray;
   int kind = PRISM_RAY_CAMERA;
   bool shade1 = false;
   vec3 shade1_w = vec3(0.0), after_w = vec3(0.0);
-  PrismRay after = camera_ray;
+  PrismWorldRay after = camera_ray;
   int depth = 1;
   while (depth <= max_depth) {
     ++prism_ray_counts[kind];
@@ -294,7 +295,7 @@ PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_pat
         double n1 = s.front ? 1.0LF : ior, n2 = s.front ? ior : 1.0LF, eta = n1 / n2;
         double dn = dot(s.n, ray.dir);
         double k = 1.0LF - eta * eta * (1.0LF - dn * dn);
-        PrismRay reflected = prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF);
+        PrismWorldRay reflected = prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF);
         if (k < 0.0LF) {  // total internal reflection: w unchanged
           ray = reflected;
           kind = PRISM_RAY_REFLECT;
