@@ -1,5 +1,5 @@
 // prism bench SCENE [-b BACKENDS] [--frames N] [--warmup N] [--width W --height H --spp S --max-depth D]
-//                   [--orbit DEGREES] [--no-check] [--json F] [--profile]
+//                   [--orbit DEGREES] [--no-check] [--json F] [--profile] [--precision auto|float|double]
 // Frame time, FPS and rays per second per backend, the one-off costs apart,
 // and the memory held while rendering (apps/prism/bench/bench_run.hpp).
 // Exit 1 when a backend's last frame differs from a fresh render of its camera.
@@ -19,7 +19,7 @@ namespace prism::cli {
 namespace {
 
 struct BenchArgs {
-  std::string scene, json;
+  std::string scene, json, precision = "auto";
   std::vector<std::string> backends;
   std::optional<int> width, height, spp, max_depth;
   int frames = 20, warmup = 2;
@@ -139,6 +139,7 @@ int run_bench(const BenchArgs& args) {
   options.check = !args.no_check;
   options.profile = args.profile;
   options.settings.profile = args.profile;
+  options.precision = precision_flag(args.precision);
   const std::vector<std::string> names = backends_to_run(registry, args);
 
   const ImageSettings& image = options.settings.image;
@@ -184,6 +185,7 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--orbit", args->orbit, "Camera yaw per frame about the viewer's orbit target, degrees (0.25)");
   sub->add_flag("--no-check", args->no_check, "Skip comparing the last frame with a fresh render of its camera");
   sub->add_option("--json", args->json, "Write the results to this JSON file");
+  sub->add_option("--precision", args->precision, kPrecisionHelp);
   sub->add_flag("--profile", args->profile,
                 "Print where a frame's time goes: camera rays, secondary rays, shadow rays, shading, image write");
   return [args] { return run_bench(*args); };

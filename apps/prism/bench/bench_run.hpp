@@ -25,6 +25,7 @@ struct Options {
   double orbit_degrees = 0.25;  // camera yaw about its target per frame
   bool check = true;          // compare the last frame with a fresh render of its camera
   bool profile = false;       // time a frame's phases (RenderSettings::profile) and the image write
+  Precision precision = Precision::automatic;  // --precision, set on every backend started
 };
 
 struct Memory {
