@@ -70,6 +70,7 @@ void print_result(const bench::Result& r) {
               r.backend.c_str(), r.device.c_str(), r.frame_ms.size(), r.median_ms(), r.percentile_ms(10),
               r.percentile_ms(90), r.percentile_ms(0), r.percentile_ms(100), r.fps());
   std::printf("  processor time: %.1f ms per frame, all threads\n", r.cpu_ms_per_frame);
+  if (!r.precision.empty()) std::printf("  precision: %s\n", r.precision.c_str());
   std::printf("  rays: %.2f M/s total", r.rays_per_second() / 1e6);
   const double seconds = r.rays > 0 ? double(r.rays) / r.rays_per_second() : 0;
   for (const auto& [kind, count] : r.rays_by_kind)
@@ -102,6 +103,7 @@ nlohmann::ordered_json to_json(const bench::Result& r) {
     return j;
   }
   j["device"] = r.device;
+  j["precision"] = r.precision;
   j["frames"] = r.frame_ms.size();
   j["frame_ms"] = {{"median", r.median_ms()}, {"p10", r.percentile_ms(10)}, {"p90", r.percentile_ms(90)},
                    {"min", r.percentile_ms(0)}, {"max", r.percentile_ms(100)}, {"all", r.frame_ms}};

@@ -182,6 +182,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
   if (auto it = before.counters.find(counter::kSceneBytes); it != before.counters.end())
     result.memory.scene_bytes = int64_t(it->second);
   if (auto it = before.info.find(info_key::kDevice); it != before.info.end()) result.device = it->second;
+  if (auto it = before.info.find(info_key::kPrecision); it != before.info.end()) result.precision = it->second;
 
   reset_peak_resident();
   Image last;
