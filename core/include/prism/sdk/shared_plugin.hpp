@@ -65,9 +65,10 @@ void abi_surface(const void* record, const ::PrismRay* ray, const ::PrismHit* hi
 namespace prism::sdk::f32 {
 namespace {
 
-// The nearest float to x no smaller (RoundUp) or no larger than x: the float
-// bounds (tmin, tmax] then lie inside the double ones, so every t the float
-// instantiation accepts keeps the ABI's contract once widened to double.
+// The nearest float to x no smaller (float_up) or no larger (float_down)
+// than x: the float bounds (tmin, tmax] then lie inside the double ones, so
+// every t the float instantiation accepts keeps the ABI's contract once
+// widened to double.
 inline float float_up(double x) {
   const float f = float(x);
   return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
