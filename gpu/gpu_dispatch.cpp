@@ -17,6 +17,15 @@ KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primit
   return options;
 }
 
+bool float_primitives_for(Precision precision) { return precision == Precision::float32; }
+
+// "float" as the reference backend says it (the stability suite exempts its
+// double-only families on exactly that word); the double kernel's wording
+// keeps the float32 shading in view, and the GPU's float caps with it.
+const char* precision_description(bool float_primitives) {
+  return float_primitives ? "float" : "double geometry, float32 shading";
+}
+
 static_assert(std::size(kRayKindNames) <= kRayCounterCount);
 
 namespace {

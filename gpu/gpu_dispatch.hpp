@@ -30,6 +30,12 @@ constexpr int kRenderLocalSize = 8;
 // plugins intersect in float (`--precision float`).
 KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primitives = false);
 
+// Backend::set_precision for both GPU backends: whether the plugins run in
+// float (`float` yes; `auto` and `double` no: double until the kernels choose
+// per object), and what `--stats` info.precision then says.
+bool float_primitives_for(Precision precision);
+const char* precision_description(bool float_primitives);
+
 struct Tile {
   int x0, y0, width, height;
 };

@@ -84,8 +84,19 @@ class OpenGLBackend : public Backend {
  public:
   OpenGLBackend() : context_(std::make_unique<gl::EglContext>()) {
     stats_.info[info_key::kDevice] = context_->description();
-    stats_.info[info_key::kPrecision] = "double geometry, float32 shading";
+    stats_.info[info_key::kPrecision] = gpu::precision_description(false);
     gpu::start_counters(stats_);
+  }
+
+  void set_precision(Precision precision) override {
+    const bool wanted = gpu::float_primitives_for(precision);
+    if (wanted == float_primitives_) return;
+    float_primitives_ = wanted;
+    stats_.info[info_key::kPrecision] = gpu::precision_description(wanted);
+    if (state_) {
+      gl::EglContext::Current current(*context_);
+      state_->drop_programs();
+    }
   }
 
   ~OpenGLBackend() override {
@@ -225,7 +236,7 @@ class OpenGLBackend : public Backend {
     if (!state_) throw RuntimeError("opengl backend: render or trace before prepare");
     GLuint& program = trace ? state_->trace_program : state_->render_program;
     if (program) return program;
-    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, gpu::kernel_options(trace, kApiGlue));
+    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, gpu::kernel_options(trace, kApiGlue, float_primitives_));
     gl::ProgramStats build;
     program = gl::build_program(kernel.text, context_->driver_identity(), build);
     auto start = std::chrono::steady_clock::now();
@@ -264,6 +275,7 @@ class OpenGLBackend : public Backend {
 
   std::unique_ptr<gl::EglContext> context_;
   std::unique_ptr<GpuState> state_;
+  bool float_primitives_ = false;  // --precision float
   const Scene* scene_ = nullptr;
   BackendStats stats_;
 };

@@ -60,11 +60,19 @@ class VulkanBackend : public Backend {
         commands_(std::make_unique<vk::Commands>(*context_)),
         layout_(std::make_unique<vk::PipelineLayout>(*context_)) {
     stats_.info[info_key::kDevice] = context_->description();
-    stats_.info[info_key::kPrecision] = "double geometry, float32 shading";
+    stats_.info[info_key::kPrecision] = gpu::precision_description(false);
     stats_.info[info_key::kValidation] = context_->validation() ? "on" : "off";
     stats_.counters[counter::kMaxStorageBufferBytes] = double(context_->properties().limits.maxStorageBufferRange);
     gpu::start_counters(stats_);
     create_descriptor_pool();
+  }
+
+  void set_precision(Precision precision) override {
+    const bool wanted = gpu::float_primitives_for(precision);
+    if (wanted == float_primitives_) return;
+    float_primitives_ = wanted;
+    stats_.info[info_key::kPrecision] = gpu::precision_description(wanted);
+    if (scene_) drop_pipelines();
   }
 
   ~VulkanBackend() override {
@@ -242,7 +250,7 @@ class VulkanBackend : public Backend {
     if (!scene_) throw RuntimeError("vulkan backend: render or trace before prepare");
     Kernel& slot = trace ? scene_->trace : scene_->render;
     if (slot.pipeline) return slot;
-    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue));
+    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue, float_primitives_));
     vk::PipelineStats build;
     slot.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
     if (!slot.descriptors) slot.descriptors = allocate_descriptors();
@@ -373,6 +381,7 @@ class VulkanBackend : public Backend {
   const Scene* scene_model_ = nullptr;
   mutable size_t reported_ = 0;
   BackendStats stats_;
+  bool float_primitives_ = false;  // --precision float
 };
 
 void probe(PrismBackendProbe* out) {

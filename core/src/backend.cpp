@@ -28,7 +28,7 @@ void Backend::set_precision(Precision precision) {
   if (precision == Precision::float32)
     throw InputError(
         "this backend computes in double only; --precision float is for a backend with a float path "
-        "(the reference backend runs each plugin's float instantiation)");
+        "(the reference backend runs each plugin's float instantiation, the GPU backends its float GLSL)");
 }
 
 void check_region(const RenderSettings& settings) {

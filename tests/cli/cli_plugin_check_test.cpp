@@ -72,6 +72,8 @@ TEST_F(PluginCheck, PassesOnEveryGpuBackendBuilt) {
     EXPECT_TRUE(ExitedWith(r, 0));
     EXPECT_NE(r.out.find(backend + " (double geometry, float32 shading): ids agree on 100.000 %"), std::string::npos)
         << r.out;
+    // The GLSL float instantiation of the same source, held to the float caps.
+    EXPECT_NE(r.out.find(backend + " (float): ids agree on 100.000 %"), std::string::npos) << r.out;
   }
 }
 

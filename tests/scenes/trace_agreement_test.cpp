@@ -1,8 +1,12 @@
-// `trace` on random rays agrees with the reference backend, per primitive
-// (each primitive's objects come from its folder: tests/cases/primitive_cases.hpp):
-// the same object id on at least 99.9 % of rays and a relative t error
-// whose 99th percentile is at most 1e-4. Each primitive is rotated and off
-// the origin; rays start 2 to 50 units away (and some inside the bounds)
+// `trace` on random rays agrees with the reference backend in double, per
+// primitive (each primitive's objects come from its folder:
+// tests/cases/primitive_cases.hpp) and per instantiation of its one source:
+// C++ in float (the reference backend with --precision float), and every
+// other backend in double and, where it has a float path, in float (the GPU
+// backends' GLSL float instantiation). Each is held to the same object id on
+// at least 99.9 % of rays and a relative t error whose 99th percentile is at
+// most 1e-4 (the stability suite's float caps). Each primitive is rotated and
+// off the origin; rays start 2 to 50 units away (and some inside the bounds)
 // and aim at random points around the object, so hits, misses, silhouettes
 // and rays from inside all occur.
 #include <gtest/gtest.h>
@@ -12,6 +16,8 @@
 #include <random>
 
 #include "primitive_cases.hpp"
+#include "prism/backend.hpp"
+#include "prism/errors.hpp"
 #include "prism/registry.hpp"
 #include "prism/scene_loader.hpp"
 #include "test_support.hpp"
@@ -65,11 +71,43 @@ std::vector<prism::TraceQuery> random_rays(const AgreementCase& c, int count) {
   return rays;
 }
 
-std::vector<prism::TraceResult> trace(prism::Registry& registry, const std::string& backend, const prism::Scene& scene,
-                                      const std::vector<prism::TraceQuery>& rays) {
+std::vector<prism::TraceResult> trace(prism::Registry& registry, const std::string& backend, prism::Precision precision,
+                                      const prism::Scene& scene, const std::vector<prism::TraceQuery>& rays) {
   auto instance = registry.backend(backend)->create();
+  instance->set_precision(precision);
   instance->prepare(scene);
   return instance->trace(rays);
+}
+
+// Whether `backend` has a float path (the default Backend refuses one).
+bool has_float_path(prism::Registry& registry, const std::string& backend) {
+  try {
+    registry.backend(backend)->create()->set_precision(prism::Precision::float32);
+    return true;
+  } catch (const prism::InputError&) {
+    return false;
+  }
+}
+
+void expect_agreement(const std::vector<prism::TraceResult>& expected, const std::vector<prism::TraceResult>& actual,
+                      const std::string& what) {
+  ASSERT_EQ(actual.size(), expected.size());
+  size_t same_id = 0, hits = 0;
+  std::vector<double> t_errors;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    hits += expected[i].id >= 0;
+    if (actual[i].id != expected[i].id) continue;
+    ++same_id;
+    if (expected[i].id >= 0) t_errors.push_back(std::abs(actual[i].t - expected[i].t) / expected[i].t);
+  }
+  std::sort(t_errors.begin(), t_errors.end());
+  const double p99 = t_errors.empty() ? 0.0 : t_errors[size_t(0.99 * double(t_errors.size() - 1))];
+  std::printf("%s: %zu hits of %zu rays, id agreement %.4f %%, relative t error p99 %.3g, max %.3g\n", what.c_str(), hits,
+              expected.size(), 100.0 * double(same_id) / double(expected.size()), p99,
+              t_errors.empty() ? 0.0 : t_errors.back());
+  EXPECT_GT(hits, expected.size() / 10) << what << ": too few hits to measure anything";
+  EXPECT_GE(double(same_id), 0.999 * double(expected.size())) << what;
+  EXPECT_LE(p99, 1e-4) << what;
 }
 
 class TraceAgreement : public testing::TestWithParam<std::tuple<std::string, AgreementCase>> {};
@@ -80,26 +118,15 @@ TEST_P(TraceAgreement, MatchesReferenceOnRandomRays) {
   prism::Registry registry;
   prism::Scene scene = prism::load_scene_from_string(scene_for(primitive), ".", registry);
   const auto rays = random_rays(primitive, 20000);
-  const auto expected = trace(registry, "reference", scene, rays);
-  const auto actual = trace(registry, backend, scene, rays);
-  ASSERT_EQ(actual.size(), expected.size());
-  size_t same_id = 0, hits = 0;
-  std::vector<double> t_errors;
-  for (size_t i = 0; i < rays.size(); ++i) {
-    hits += expected[i].id >= 0;
-    if (actual[i].id != expected[i].id) continue;
-    ++same_id;
-    if (expected[i].id >= 0) t_errors.push_back(std::abs(actual[i].t - expected[i].t) / expected[i].t);
-  }
-  std::sort(t_errors.begin(), t_errors.end());
-  const double p99 = t_errors.empty() ? 0.0 : t_errors[size_t(0.99 * double(t_errors.size() - 1))];
-  std::printf("%s on %s: %zu hits of %zu rays, id agreement %.4f %%, relative t error p99 %.3g, max %.3g\n",
-              primitive.name.c_str(), backend.c_str(), hits, rays.size(),
-              100.0 * double(same_id) / double(rays.size()), p99,
-              t_errors.empty() ? 0.0 : t_errors.back());
-  EXPECT_GT(hits, rays.size() / 10) << "too few hits to measure anything";
-  EXPECT_GE(double(same_id), 0.999 * double(rays.size()));
-  EXPECT_LE(p99, 1e-4);
+  const auto expected = trace(registry, "reference", prism::Precision::float64, scene, rays);
+  if (backend != "reference")
+    expect_agreement(expected, trace(registry, backend, prism::Precision::float64, scene, rays),
+                     primitive.name + " on " + backend + " in double");
+  if (has_float_path(registry, backend))
+    expect_agreement(expected, trace(registry, backend, prism::Precision::float32, scene, rays),
+                     primitive.name + " on " + backend + " in float");
+  else
+    std::printf("%s computes in double only: no float instantiation to measure\n", backend.c_str());
 }
 
 std::string name_of(const testing::TestParamInfo<TraceAgreement::ParamType>& info) {
@@ -110,7 +137,7 @@ std::string name_of(const testing::TestParamInfo<TraceAgreement::ParamType>& inf
 }
 
 INSTANTIATE_TEST_SUITE_P(Primitives, TraceAgreement,
-                         testing::Combine(testing::ValuesIn(prism::test::backends_except("reference")),
+                         testing::Combine(testing::ValuesIn(prism::test::backend_names()),
                                           testing::ValuesIn(all_cases())),
                          name_of);
 
