@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "kernel_source.hpp"
+#include "prism/errors.hpp"
 #include "prism/scene_loader.hpp"
 #include "prism/sdk/shared_source.hpp"
 
@@ -89,6 +90,30 @@ TEST(KernelSource, FloatPrimitivesDefineRealFloatBeforeThePrelude) {
   ASSERT_NE(prelude, std::string::npos);
   EXPECT_LT(define, prelude);
   EXPECT_EQ(generate_kernel(pack_scene(scene), KernelOptions{}).text.find("PRISM_REAL_FLOAT 1"), std::string::npos);
+}
+
+// A plugin whose GLSL is not in the shared dialect has no float
+// instantiation (ABI 4: intersect_float is intersect): a float kernel is
+// refused by name instead of failing to compile.
+TEST(KernelSource, FloatKernelNamesAPluginWithoutAFloatInstantiation) {
+  Registry registry;
+  Scene scene = load(registry, kSpheresOnly);
+  PackedScene packed = pack_scene(scene);
+  ASSERT_EQ(packed.types.size(), 1u);
+  PrismPrimitiveDesc double_only = *packed.types[0];
+  double_only.intersect_float = double_only.intersect;
+  packed.types[0] = &double_only;
+  KernelOptions options;
+  options.float_primitives = true;
+  try {
+    generate_kernel(packed, options);
+    FAIL() << "a float kernel was generated";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("primitive plugin 'sphere' has no float instantiation"), std::string::npos)
+        << e.what();
+  }
+  options.float_primitives = false;
+  EXPECT_NO_THROW(generate_kernel(packed, options));
 }
 
 // The one parser of `// prism:require` lines (kernel generator,
