@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # A primitive's intersector is written once (issue: one source per
-# primitive for the CPU and the GPU): every plugin folder plugins/<type>/
+# primitive for the CPU and the GPU): every plugin folder (plugins/<type>/,
+# and the SDK's example, examples/primitive-plugin/; see plugin_folders.sh)
 # holds its one source <type>.shared.glsl, which its C++ instantiates
 # (`#define PRISM_SHARED_SOURCE "<type>.shared.glsl"`), and no other .glsl
 # file, so a hand-written GLSL twin of the intersector cannot come back.
@@ -13,6 +14,7 @@
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/plugin_folders.sh"
 not_yet_shared=()
 
 failures=0
@@ -27,24 +29,25 @@ pending() {
   return 1
 }
 
-for dir in "$root"/plugins/*/; do
-  type="$(basename "$dir")"
-  [[ -f "$dir/CMakeLists.txt" ]] || continue
+checked=()
+while read -r type dir; do
+  checked+=("$type")
+  where="${dir#"$root"/}"
   if pending "$type"; then
     [[ -f "$dir/$type.glsl" ]] || fail "$type is listed in not_yet_shared but has no $type.glsl: remove it from the list"
     continue
   fi
-  [[ -f "$dir/$type.shared.glsl" ]] || fail "plugins/$type: no one source $type.shared.glsl"
+  [[ -f "$dir/$type.shared.glsl" ]] || fail "$where: no one source $type.shared.glsl"
   grep -q "^#define PRISM_SHARED_SOURCE \"$type.shared.glsl\"" "$dir/$type.cpp" ||
-    fail "plugins/$type/$type.cpp does not instantiate $type.shared.glsl"
-  for f in "$dir"*.glsl; do
+    fail "$where/$type.cpp does not instantiate $type.shared.glsl"
+  for f in "$dir"/*.glsl; do
     [[ -e "$f" ]] || continue
-    [[ "$(basename "$f")" == "$type.shared.glsl" ]] || fail "plugins/$type/$(basename "$f"): a hand-written GLSL twin"
+    [[ "$(basename "$f")" == "$type.shared.glsl" ]] || fail "$where/$(basename "$f"): a hand-written GLSL twin"
   done
-done
+done < <(plugin_folders "$root")
 
 if [[ $failures -gt 0 ]]; then
   echo "check_no_glsl_twin: $failures failure(s)" >&2
   exit 1
 fi
-echo "check_no_glsl_twin: every plugin is written once (not yet shared: ${not_yet_shared[*]:-none})"
+echo "check_no_glsl_twin: every plugin is written once (${checked[*]}; not yet shared: ${not_yet_shared[*]:-none})"

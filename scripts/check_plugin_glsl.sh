@@ -6,8 +6,11 @@
 # prism-glsl-modules, the generator's own parser), the plugin's source, and a
 # main() that calls <type>_intersect and <type>_surface and stores their
 # results (so nothing is dead-stripped). The source is the plugin's one
-# source plugins/<type>/<type>.shared.glsl, compiled in double and in float
-# (PRISM_REAL_FLOAT), or a hand-written plugins/<type>/<type>.glsl (double).
+# source <folder>/<type>.shared.glsl, compiled in double and in float
+# (PRISM_REAL_FLOAT), or a hand-written <folder>/<type>.glsl (double). The
+# plugins are those of plugins/ and the SDK's example
+# (examples/primitive-plugin: the capsule), as scripts/plugin_folders.sh
+# lists them.
 # Each shader is compiled for OpenGL (GLSL front end, and SPIR-V for OpenGL)
 # and for Vulkan (SPIR-V, checked with spirv-val when present); then all
 # plugins together in one shader, which catches name clashes between them.
@@ -23,6 +26,7 @@
 set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+source "$root/scripts/plugin_folders.sh"
 glsl_dir="$root/core/glsl"
 shared_dir="$root/core/include/prism/sdk/shared"
 modules_tool="${PRISM_GLSL_MODULES:-$root/build/bin/prism-glsl-modules}"
@@ -41,14 +45,17 @@ command -v spirv-val >/dev/null && have_spirv_val=1
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 
+# Every plugin's folder, by type.
+declare -A folder_of=()
+while read -r name dir; do folder_of[$name]="$dir"; done < <(plugin_folders "$root")
+
 if [[ $# -gt 0 ]]; then
   plugins=("$@")
 else
   plugins=()
-  for dir in "$root"/plugins/*/; do
-    name="$(basename "$dir")"
+  while read -r name dir; do
     [[ -f "$dir/$name.shared.glsl" || -f "$dir/$name.glsl" ]] && plugins+=("$name")
-  done
+  done < <(plugin_folders "$root")
 fi
 
 failures=0
@@ -62,11 +69,11 @@ required_modules() { "$modules_tool" "$1"; }
 
 # A plugin's GPU source: its one shared source, else a hand-written GLSL file.
 plugin_source() {
-  local p="$1"
-  if [[ -f "$root/plugins/$p/$p.shared.glsl" ]]; then
-    echo "$root/plugins/$p/$p.shared.glsl"
+  local p="$1" dir="${folder_of[$1]:-$root/plugins/$1}"
+  if [[ -f "$dir/$p.shared.glsl" ]]; then
+    echo "$dir/$p.shared.glsl"
   else
-    echo "$root/plugins/$p/$p.glsl"
+    echo "$dir/$p.glsl"
   fi
 }
 
@@ -187,7 +194,7 @@ done
 # Only shared sources have a float instantiation.
 precisions_of() {
   local p
-  for p in "$@"; do [[ -f "$root/plugins/$p/$p.shared.glsl" ]] || { echo double; return; }; done
+  for p in "$@"; do [[ "$(plugin_source "$p")" == *.shared.glsl ]] || { echo double; return; }; done
   echo double float
 }
 
