@@ -24,7 +24,7 @@ set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 glsl_dir="$root/core/glsl"
-shared_dir="$root/core/include/prism/sdk/modules"
+shared_dir="$root/include/prism/sdk/modules"
 modules_tool="${PRISM_GLSL_MODULES:-$root/build/bin/prism-glsl-modules}"
 
 if ! command -v glslangValidator >/dev/null; then
