@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -215,6 +213,11 @@ PrimitiveCases make_box_cases() {
   c.bench.push_back({{{"half_size", {1.0, 0.5, 0.75}}}, prism::cases::bench_origins(5.0), [](BenchRng& r) {
                        return glm::dvec3(r.uniform(-0.9, 0.9), r.uniform(-0.45, 0.45), r.uniform(-0.675, 0.675));
                      }, {}});
+  // Random scenes: half sizes s, s * [0.1, 1), s * [0.1, 1), s = scale * [0.2, 1.5).
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at), y = s * uniform(rng, 0.1, 1), z = s * uniform(rng, 0.1, 1);
+    return random_framed_object(rng, at, "box", "\"half_size\": " + vec(s, y, z));
+  };
   return c;
 }
 
