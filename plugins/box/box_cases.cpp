@@ -135,9 +135,7 @@ void add_box(Builder& b) {
             p[other] -= (first ? s2 : s1) * eta * size;
             double nl[3] = {0, 0, 0};
             nl[face] = first ? s1 : s2;
-            const V N = normalize(kTilted.apply({nl[0], nl[1], nl[2]}));
-            const V P = kCenterA + kTilted.apply({p[0], p[1], p[2]});
-            c.rays.push_back(ray_to(P, rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, {p[0], p[1], p[2]}, {nl[0], nl[1], nl[2]}));
           }
           return c;
         });
@@ -155,9 +153,7 @@ void add_box(Builder& b) {
               if (k != face) p[k] -= s[k] * eta * size;
             double nl[3] = {0, 0, 0};
             nl[face] = s[face];
-            const V N = normalize(kTilted.apply({nl[0], nl[1], nl[2]}));
-            const V P = kCenterA + kTilted.apply({p[0], p[1], p[2]});
-            c.rays.push_back(ray_to(P, rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, {p[0], p[1], p[2]}, {nl[0], nl[1], nl[2]}));
           }
           return c;
         });

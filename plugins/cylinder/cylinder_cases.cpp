@@ -68,12 +68,7 @@ void add_cylinder(Builder& b) {
           const double r = 1, h = 2;
           c.objects =
               nlohmann::json::array({placed({{"type", "cylinder"}, {"radius", r}, {"height", h}}, kCenterA, kTilted)});
-          for (int i = 0; i < n; ++i) {
-            const double phi = rng.range(0, 2 * kPi), off = (i % 2 ? 1.0 : -1.0) * eta * h;
-            const double y = i % 4 < 2 ? off : h + off;
-            const V p{r * std::cos(phi), y, r * std::sin(phi)};
-            c.rays.push_back(ray_at_tilted_surface(rng, p, {std::cos(phi), 0, std::sin(phi)}));
-          }
+          for (int i = 0; i < n; ++i) c.rays.push_back(ray_beside_tube_end(rng, i, r, h, eta));
           return c;
         });
 }

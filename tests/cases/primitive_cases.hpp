@@ -28,6 +28,7 @@
 // nothing here is installed.
 #pragma once
 
+#include <cmath>
 #include <cstdio>
 #include <functional>
 #include <random>
@@ -52,6 +53,17 @@ namespace prism::cases {
 inline stability::Ray ray_at_tilted_surface(stability::Rng& rng, const stability::V& p, const stability::V& normal) {
   const stability::V N = stability::normalize(stability::kTilted.apply(normal));
   return stability::ray_to(stability::kCenterA + stability::kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4));
+}
+
+// Ray i of a family aimed at the tube x² + z² = r² (axis y) of a "rotated"
+// object, eta * h beside the tube's ends y = 0 and y = h (a cylinder's rims,
+// a capsule's seams): i % 4 < 2 the bottom end, else the top; odd i toward
+// +y (into the tube at the bottom, past it at the top), even i toward -y.
+inline stability::Ray ray_beside_tube_end(stability::Rng& rng, int i, double r, double h, double eta) {
+  const double phi = rng.range(0, 2 * stability::kPi), off = (i % 2 ? 1.0 : -1.0) * eta * h;
+  const double y = i % 4 < 2 ? off : h + off;
+  const stability::V p{r * std::cos(phi), y, r * std::sin(phi)};
+  return ray_at_tilted_surface(rng, p, {std::cos(phi), 0, std::sin(phi)});
 }
 
 // ---------------------------------------------------------------- trace agreement
