@@ -6,13 +6,14 @@
 
 namespace prism::gpu {
 
-KernelOptions kernel_options(bool trace, const char* api_glue) {
+KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primitives) {
   KernelOptions options;
   options.trace = trace;
   options.all_features = all_features_forced();
   options.api_glue = api_glue;
   options.local_size_x = trace ? kTraceLocalSize : kRenderLocalSize;
   options.local_size_y = trace ? 1 : kRenderLocalSize;
+  options.float_primitives = float_primitives;
   return options;
 }
 
@@ -20,6 +21,8 @@ static_assert(std::size(kRayKindNames) <= kRayCounterCount);
 
 namespace {
 constexpr long kSamplesPerTile = 1 << 18;
+// gpu/kernel.glsl scrambles a tile's work groups as k * 104729 mod n in 32 bits.
+static_assert(uint64_t(kSamplesPerTile / (kRenderLocalSize * kRenderLocalSize)) * 104729u < (uint64_t(1) << 32));
 }
 
 std::pair<int, int> tile_size(const ImageSettings& image) {

@@ -26,8 +26,9 @@ constexpr int kRenderLocalSize = 8;
 
 // The kernel options both backends build with: the work group size of the
 // render or trace kernel (the one their dispatches divide by), the forced
-// features (PRISM_KERNEL_FEATURES=all) and the API's glue code.
-KernelOptions kernel_options(bool trace, const char* api_glue);
+// features (PRISM_KERNEL_FEATURES=all), the API's glue code, and whether the
+// plugins intersect in float (`--precision float`).
+KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primitives = false);
 
 struct Tile {
   int x0, y0, width, height;

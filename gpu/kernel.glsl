@@ -20,7 +20,7 @@ layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismTraceBuffer { PrismTr
 void main() {
   uint i = gl_GlobalInvocationID.x + uint(PRISM_TILE_ORIGIN.x);
   if (i >= uint(prism_frame.flags.y)) return;
-  PrismRay ray;
+  PrismWorldRay ray;
   ray.origin = prism_trace_rays[i].origin_tmin.xyz;
   ray.dir = prism_trace_rays[i].dir.xyz;
   PrismClosest hit = prism_closest(ray, prism_trace_rays[i].origin_tmin.w);
@@ -47,18 +47,31 @@ layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismOutputBuffer {
 };
 
 // The format's camera ray through pixel (i, j) at sample offset `offset`.
-PrismRay prism_camera_ray(int i, int j, dvec2 offset) {
+PrismWorldRay prism_camera_ray(int i, int j, dvec2 offset) {
   double width = double(prism_frame.size.x), height = double(prism_frame.size.y);
   double u = ((double(i) + offset.x) / width * 2.0LF - 1.0LF) * prism_frame.tan_half_fov * prism_frame.aspect;
   double v = (1.0LF - (double(j) + offset.y) / height * 2.0LF) * prism_frame.tan_half_fov;
-  PrismRay ray;
+  PrismWorldRay ray;
   ray.origin = prism_frame.camera_position.xyz;
   ray.dir = normalize(prism_frame.camera_forward.xyz + u * prism_frame.camera_right.xyz + v * prism_frame.camera_up.xyz);
   return ray;
 }
 
+// The work group's block of the tile. Work groups are handed out in a
+// scrambled order (group k renders block k * P mod n, P a prime above any
+// group count, so the map is one to one): a CPU driver gives each thread a
+// contiguous run of groups, and in row order one thread would get the sky
+// while another gets the scene. A tile has at most 2^18 samples, so at most
+// 4096 groups of 64: k * P stays below 2^32.
+ivec2 prism_block() {
+  const uint P = 104729u;
+  uint n = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
+  uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * P % n;
+  return ivec2(k % gl_NumWorkGroups.x, k / gl_NumWorkGroups.x);
+}
+
 void main() {
-  ivec2 local = ivec2(gl_GlobalInvocationID.xy);
+  ivec2 local = prism_block() * ivec2(gl_WorkGroupSize.xy) + ivec2(gl_LocalInvocationID.xy);
   ivec2 pixel = PRISM_TILE_ORIGIN.xy + local;
   if (local.x >= PRISM_TILE_ORIGIN.z || local.y >= PRISM_TILE_ORIGIN.w) return;
   for (int k = 0; k < PRISM_RAY_KINDS; ++k) prism_ray_counts[k] = 0u;
@@ -66,7 +79,7 @@ void main() {
   vec3 sum = vec3(0.0);
   PrismSample first;
   for (int k = 0; k < prism_frame.size.z; ++k) {
-    PrismRay ray = prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]);
+    PrismWorldRay ray = prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]);
     PrismSample s = prism_trace_sample(ray, prism_frame.size.w, k == 0 && prism_frame.flags.x != 0);
     if (k == 0) first = s;
     sum += s.radiance;

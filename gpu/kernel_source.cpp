@@ -34,20 +34,20 @@ void append_section(std::ostringstream& out, const std::string& title, std::stri
 std::string type_dispatch(const PackedScene& scene) {
   std::ostringstream o;
   const size_t n = scene.types.size();
-  o << "bool prism_intersect_type(uint type, uint rec, PrismRay ray, double tmin, double tmax, out PrismHit hit) {\n";
+  o << "bool prism_intersect_type(uint type, uint rec, PrismRay ray, real tmin, real tmax, out PrismHit hit) {\n";
   for (size_t i = 0; i < n; ++i) {
     const std::string call = std::string(scene.types[i]->glsl_prefix) + "_intersect(rec, ray, tmin, tmax, hit);\n";
     if (i + 1 < n) o << "  if (type == " << i << "u) return " << call;
     else o << "  return " << call;
   }
-  if (n == 0) o << "  hit.t = 0.0LF;\n  hit.data = dvec3(0.0LF);\n  hit.part = 0u;\n  return false;\n";
+  if (n == 0) o << "  prism_clear_hit(hit);\n  return false;\n";
   o << "}\n\nvoid prism_surface_type(uint type, uint rec, PrismRay ray, PrismHit hit, out PrismSurface s) {\n";
   for (size_t i = 0; i < n; ++i) {
     const std::string call = std::string(scene.types[i]->glsl_prefix) + "_surface(rec, ray, hit, s);\n";
     if (i + 1 < n) o << "  if (type == " << i << "u) {\n    " << call << "    return;\n  }\n";
     else o << "  " << call;
   }
-  if (n == 0) o << "  s.point = dvec3(0.0LF);\n  s.normal = dvec3(0.0LF);\n  s.uv = dvec2(0.0LF);\n";
+  if (n == 0) o << "  s.point = real3(R(0.0));\n  s.normal = real3(R(0.0));\n  s.uv = real2(R(0.0));\n";
   o << "}\n";
   return o.str();
 }
@@ -62,6 +62,7 @@ void append_defines(std::ostringstream& out, const std::vector<Feature>& feature
   out << "#define PRISM_LOCAL_SIZE_X " << options.local_size_x << '\n';
   out << "#define PRISM_LOCAL_SIZE_Y " << options.local_size_y << '\n';
   if (options.trace) out << "#define PRISM_MODE_TRACE 1\n";
+  if (options.float_primitives) out << "#define PRISM_REAL_FLOAT 1\n";
   for (Feature f : features) out << "#define " << feature_macro(f) << " 1\n";
 }
 

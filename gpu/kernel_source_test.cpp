@@ -76,6 +76,21 @@ TEST(KernelSource, RenderKernelHasShadingSection) {
   EXPECT_NE(kernel.text.find("===== gpu/shading.glsl"), std::string::npos);
 }
 
+// --precision float: the plugins' float instantiation, defined before the
+// prelude reads it; the double kernel does not define it.
+TEST(KernelSource, FloatPrimitivesDefineRealFloatBeforeThePrelude) {
+  Registry registry;
+  Scene scene = load(registry, kSpheresOnly);
+  KernelOptions options;
+  options.float_primitives = true;
+  const std::string text = generate_kernel(pack_scene(scene), options).text;
+  const size_t define = text.find("#define PRISM_REAL_FLOAT 1"), prelude = text.find("===== core/glsl/prelude.glsl");
+  ASSERT_NE(define, std::string::npos);
+  ASSERT_NE(prelude, std::string::npos);
+  EXPECT_LT(define, prelude);
+  EXPECT_EQ(generate_kernel(pack_scene(scene), KernelOptions{}).text.find("PRISM_REAL_FLOAT 1"), std::string::npos);
+}
+
 // The one parser of `// prism:require` lines (kernel generator,
 // plugin_testing.hpp and scripts/check_plugin_glsl.sh all use it).
 TEST(RequiredModules, LinesOfTheirOwnInOrderEachOnce) {

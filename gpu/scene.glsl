@@ -77,9 +77,7 @@ PrismClosest prism_no_hit() {
   c.t = prism_inf();
   c.id = PRISM_MISS_ID;
   c.object = 0u;
-  c.hit.t = 0.0LF;
-  c.hit.data = dvec3(0.0LF);
-  c.hit.part = 0u;
+  prism_clear_hit(c.hit);
   return c;
 }
 
@@ -95,41 +93,40 @@ double prism_next_below(double x) {
   return packDouble2x32(bits);
 }
 
-// A world ray in object i's local frame (rotations keep t).
-PrismRay prism_to_local(uint i, PrismRay ray) {
-  PrismRay local;
+// A ray in world space (double whatever `real` is: the kernel's positions
+// and t), and a hit's world point, outward unit normal and uv.
+struct PrismWorldRay {
+  dvec3 origin;
+  dvec3 dir;
+};
+
+struct PrismWorldSurface {
+  dvec3 point;
+  dvec3 normal;
+  dvec2 uv;
+};
+
+// A world ray in object i's local frame (rotations keep t), as the plugins
+// take it: computed in double, then rounded to `real` (a float kernel's
+// plugins intersect in float after the re-centring in double).
+PrismRay prism_to_local(uint i, PrismWorldRay ray) {
   dvec3 o = ray.origin - prism_objects[i].center.xyz;
+  PrismRay local;
   if (prism_objects[i].info.w == 0u) {
-    local.origin = o;
-    local.dir = ray.dir;
+    local.origin = real3(o);
+    local.dir = real3(ray.dir);
     return local;
   }
   dvec3 c0 = prism_objects[i].columns[0].xyz, c1 = prism_objects[i].columns[1].xyz, c2 = prism_objects[i].columns[2].xyz;
-  local.origin = dvec3(dot(c0, o), dot(c1, o), dot(c2, o));
-  local.dir = dvec3(dot(c0, ray.dir), dot(c1, ray.dir), dot(c2, ray.dir));
+  local.origin = real3(dvec3(dot(c0, o), dot(c1, o), dot(c2, o)));
+  local.dir = real3(dvec3(dot(c0, ray.dir), dot(c1, ray.dir), dot(c2, ray.dir)));
   return local;
 }
 
-// Tests object i against the best hit so far: t strictly closer, or equal t
-// and a lower object id (the format's tie rule).
-void prism_test_object(uint i, PrismRay ray, double tmin, inout PrismClosest best) {
-  PrismHit h;
-  uvec4 info = prism_objects[i].info;
-  if (!prism_intersect_type(info.y, info.x, prism_to_local(i, ray), tmin, best.t, h)) return;
-  int id = prism_objects[i].id.x;
-  if (h.t < best.t || id < best.id) {
-    best.t = h.t;
-    best.id = id;
-    best.object = i;
-    best.hit = h;
-  }
-}
-
-bool prism_hits_object(uint i, PrismRay ray, double tmax) {
-  PrismHit h;
-  uvec4 info = prism_objects[i].info;
-  return prism_intersect_type(info.y, info.x, prism_to_local(i, ray), 0.0LF, tmax, h);
-}
+// A world ray in object i's local frame is tested by one call of the
+// generated type dispatch: a GPU compiler inlines every call, so each call
+// site of prism_intersect_type is a copy of every intersector in the kernel.
+// prism_traverse therefore has exactly one, for closest and any hit alike.
 
 // 1/d with zero components replaced by a huge finite value, so the slab test
 // never forms 0 * inf.
@@ -152,60 +149,81 @@ bool prism_enter_node(uint node, dvec3 o, dvec3 inv, double tmin, double tmax, o
 
 #define PRISM_BVH_STACK 64
 
-// Closest object hit with t > tmin (ties: lower id), or whether any object
-// lies at 0 < t <= tmax when `any_hit` (then `best` is left as it was).
-bool prism_traverse(PrismRay ray, double tmin, double tmax, bool any_hit, inout PrismClosest best) {
-  if (prism_frame.counts.w > 0) {
-    dvec3 inv = prism_inverse_dir(ray.dir);
-    uint stack[PRISM_BVH_STACK];
-    int top = 0;
-    uint node = 0u;
-    double tnear;
-    bool visit = prism_enter_node(0u, ray.origin, inv, tmin, any_hit ? tmax : best.t, tnear);
+// Tests objects first .. first + count - 1: the closest hit with t > tmin
+// into `best` (ties: the format's rule, lower object id at equal t), or, when
+// `any_hit`, true as soon as one lies at tmin < t <= tmax.
+bool prism_test_objects(uint first, uint count, PrismWorldRay ray, double tmin, double tmax, bool any_hit,
+                        inout PrismClosest best) {
+  for (uint i = first; i < first + count; ++i) {
+    PrismHit h;
+    uvec4 info = prism_objects[i].info;
+    if (!prism_intersect_type(info.y, info.x, prism_to_local(i, ray), real(tmin), real(any_hit ? tmax : best.t), h))
+      continue;
+    if (any_hit) return true;
+    int id = prism_objects[i].id.x;
+    if (double(h.t) < best.t || id < best.id) {
+      best.t = double(h.t);
+      best.id = id;
+      best.object = i;
+      best.hit = h;
+    }
+  }
+  return false;
+}
+
+// Closest object hit or any hit (see prism_test_objects): the leaves a BVH
+// walk reaches, nearest child first, then the unbounded objects (planes,
+// unclipped quadrics).
+bool prism_traverse(PrismWorldRay ray, double tmin, double tmax, bool any_hit, inout PrismClosest best) {
+  dvec3 inv = prism_inverse_dir(ray.dir);
+  uint stack[PRISM_BVH_STACK];
+  int top = 0;
+  uint node = 0u;
+  double tnear;
+  bool visit = prism_frame.counts.w > 0 && prism_enter_node(0u, ray.origin, inv, tmin, any_hit ? tmax : best.t, tnear);
+  bool unbounded_done = false;
+  for (;;) {
+    // The next run of objects: a leaf the walk reaches, else the unbounded ones once.
+    uint first = 0u, count = 0u;
     while (visit || top > 0) {
       if (!visit) {
         node = stack[--top];
         visit = true;
       }
-      uint count = prism_nodes[node].count, first = prism_nodes[node].first;
-      if (count > 0u) {
-        for (uint i = first; i < first + count; ++i) {
-          if (any_hit) {
-            if (prism_hits_object(i, ray, tmax)) return true;
-          } else {
-            prism_test_object(i, ray, tmin, best);
-          }
-        }
+      uint node_count = prism_nodes[node].count, node_first = prism_nodes[node].first;
+      if (node_count > 0u) {
+        first = node_first;
+        count = node_count;
         visit = false;
-        continue;
+        break;
       }
       double limit = any_hit ? tmax : best.t, tl, tr;
-      bool left = prism_enter_node(first, ray.origin, inv, tmin, limit, tl);
-      bool right = prism_enter_node(first + 1u, ray.origin, inv, tmin, limit, tr);
+      bool left = prism_enter_node(node_first, ray.origin, inv, tmin, limit, tl);
+      bool right = prism_enter_node(node_first + 1u, ray.origin, inv, tmin, limit, tr);
       if (left && right) {
         bool left_first = tl <= tr;
-        stack[top++] = left_first ? first + 1u : first;
-        node = left_first ? first : first + 1u;
+        stack[top++] = left_first ? node_first + 1u : node_first;
+        node = left_first ? node_first : node_first + 1u;
       } else if (left || right) {
-        node = left ? first : first + 1u;
+        node = left ? node_first : node_first + 1u;
       } else {
         visit = false;
       }
     }
-  }
-  for (uint i = uint(prism_frame.counts.y); i < uint(prism_frame.counts.x); ++i) {
-    if (any_hit) {
-      if (prism_hits_object(i, ray, tmax)) return true;
-    } else {
-      prism_test_object(i, ray, tmin, best);
+    if (count == 0u) {
+      if (unbounded_done) break;
+      unbounded_done = true;
+      first = uint(prism_frame.counts.y);
+      count = uint(prism_frame.counts.x) - first;
     }
+    if (prism_test_objects(first, count, ray, tmin, tmax, any_hit, best)) return true;
   }
   return false;
 }
 
 // Closest hit with t > tmin over objects and visible light spheres; objects
 // win ties with light spheres, lower light index wins among lights.
-PrismClosest prism_closest(PrismRay ray, double tmin) {
+PrismClosest prism_closest(PrismWorldRay ray, double tmin) {
   PrismClosest best = prism_no_hit();
   prism_traverse(ray, tmin, 0.0LF, false, best);
 #ifdef PRISM_FEATURE_LIGHT_SPHERES
@@ -213,10 +231,11 @@ PrismClosest prism_closest(PrismRay ray, double tmin) {
   for (int k = 0; k < prism_frame.counts.z; ++k) {
     double radius = prism_lights[k].position.w;
     if (prism_lights[k].directional != 0u || !(radius > 0.0LF)) continue;
-    double t;
-    if (prism_intersect_sphere(ray.origin - prism_lights[k].position.xyz, ray.dir, radius, tmin, limit, t) &&
-        t < best.t) {
-      best.t = t;
+    real t;
+    if (prism_intersect_sphere(real3(ray.origin - prism_lights[k].position.xyz), real3(ray.dir), real(radius),
+                               real(tmin), real(limit), t) &&
+        double(t) < best.t) {
+      best.t = double(t);
       best.id = -2 - k;
     }
   }
@@ -225,17 +244,19 @@ PrismClosest prism_closest(PrismRay ray, double tmin) {
 }
 
 // True when an object lies at 0 < t < tmax (light spheres never block).
-bool prism_occluded(PrismRay ray, double tmax) {
+bool prism_occluded(PrismWorldRay ray, double tmax) {
   PrismClosest unused = prism_no_hit();
   return prism_traverse(ray, 0.0LF, prism_next_below(tmax), true, unused);
 }
 
 // World point, outward unit normal (-dir where undefined) and uv of a hit.
-PrismSurface prism_world_surface(PrismRay ray, PrismClosest c) {
-  PrismSurface s;
+PrismWorldSurface prism_world_surface(PrismWorldRay ray, PrismClosest c) {
+  PrismSurface local;
   uint i = c.object;
-  prism_surface_type(prism_objects[i].info.y, prism_objects[i].info.x, prism_to_local(i, ray), c.hit, s);
-  dvec3 point = s.point, normal = s.normal;
+  prism_surface_type(prism_objects[i].info.y, prism_objects[i].info.x, prism_to_local(i, ray), c.hit, local);
+  dvec3 point = dvec3(local.point), normal = dvec3(local.normal);
+  PrismWorldSurface s;
+  s.uv = dvec2(local.uv);
   if (prism_objects[i].info.w != 0u) {
     dvec3 c0 = prism_objects[i].columns[0].xyz, c1 = prism_objects[i].columns[1].xyz, c2 = prism_objects[i].columns[2].xyz;
     point = c0 * point.x + c1 * point.y + c2 * point.z;
@@ -243,6 +264,6 @@ PrismSurface prism_world_surface(PrismRay ray, PrismClosest c) {
   }
   s.point = prism_objects[i].center.xyz + point;
   double len = length(normal);
-  s.normal = (len > 0.0LF && prism_is_finite(len)) ? normal / len : -ray.dir;
+  s.normal = (len > 0.0LF && !isinf(len) && !isnan(len)) ? normal / len : -ray.dir;
   return s;
 }

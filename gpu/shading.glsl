@@ -1,7 +1,8 @@
 // Prism GPU kernels, part 2 of 3: the scene format's Whitted shading, the
-// one GLSL copy shared by the OpenGL and Vulkan backends. It follows
-// core/src/shading.cpp step for step (same ray kinds, same path hash), so a
-// reader can check one against the other. Features the scene does not use
+// one GLSL copy shared by the OpenGL and Vulkan backends. It computes what
+// core/src/shading.cpp computes, term for term and in the same order (same
+// ray kinds, same path hash), as one loop per sample (prism_trace_sample
+// says why). Features the scene does not use
 // are compiled out through the PRISM_FEATURE_* macros the generator sets.
 //
 // Geometry (points, normals, directions, t) is double; colours are float.
@@ -115,15 +116,15 @@ struct PrismShadingPoint {
   double epsilon;
 };
 
-PrismRay prism_spawn(PrismShadingPoint s, dvec3 dir, double side) {
-  PrismRay r;
+PrismWorldRay prism_spawn(PrismShadingPoint s, dvec3 dir, double side) {
+  PrismWorldRay r;
   r.origin = s.position + side * s.epsilon * s.n;
   r.dir = dir;
   return r;
 }
 
-PrismShadingPoint prism_shading_point(PrismRay ray, PrismClosest hit) {
-  PrismSurface sp = prism_world_surface(ray, hit);
+PrismShadingPoint prism_shading_point(PrismWorldRay ray, PrismClosest hit) {
+  PrismWorldSurface sp = prism_world_surface(ray, hit);
   PrismShadingPoint s;
   s.position = sp.point;
   s.front = dot(ray.dir, sp.normal) < 0.0LF;
@@ -142,13 +143,14 @@ PrismShadingPoint prism_shading_point(PrismRay ray, PrismClosest hit) {
     s.alpha = texel.a;
   }
 #endif
-  s.epsilon = 1e-4LF * (1.0LF + prism_max_abs_component(s.position));
+  dvec3 p = abs(s.position);
+  s.epsilon = 1e-4LF * (1.0LF + max(p.x, max(p.y, p.z)));
   return s;
 }
 
 bool prism_shadowed(dvec3 origin, dvec3 to_light, double distance) {
   ++prism_ray_counts[PRISM_RAY_SHADOW];
-  PrismRay r;
+  PrismWorldRay r;
   r.origin = origin;
   r.dir = to_light;
   return prism_occluded(r, distance);
@@ -192,21 +194,6 @@ vec3 prism_local_light(PrismShadingPoint s, dvec3 dir) {
   return sum;
 }
 
-vec3 prism_shade1(PrismRay ray) {
-  ++prism_ray_counts[PRISM_RAY_SHADE1];
-  PrismClosest hit = prism_closest(ray, 0.0LF);
-  prism_note(uint(hit.id));
-  if (hit.id == PRISM_MISS_ID) return prism_background(ray.dir);
-  if (hit.id < 0) return prism_lights[-2 - hit.id].color_intensity.rgb;
-  PrismShadingPoint s = prism_shading_point(ray, hit);
-  vec3 result = prism_local_light(s, ray.dir);
-#ifdef PRISM_FEATURE_ABSORPTION
-  if (prism_materials[s.material].params.z >= 1.0 && !s.front)
-    result *= exp(-prism_materials[s.material].absorb_specular.rgb * float(hit.t));
-#endif
-  return result;
-}
-
 // first_t, first_normal, first_albedo: the first hit's t, outward unit
 // normal and colour c (a light sphere's: its colour); +inf, 0, 0 on a miss.
 struct PrismSample {
@@ -218,7 +205,15 @@ struct PrismSample {
   vec3 first_albedo;
 };
 
-PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_path) {
+// One loop traces a sample's whole path, Shade1 rays included: a GPU
+// compiler inlines every call, so each call site of the closest-hit query or
+// of the light loop is a copy of every intersector, and this kernel has one
+// of each (compile time and code size fall several-fold). A dielectric hit
+// sends its reflected ray first, marked `shade1` (Shade1 of the format: its
+// first hit's local light only, weight w F); the refracted ray waits in
+// `after` (weight w (1 - F)) and carries on from the same depth once the
+// Shade1 ray is done, so sums, notes and counts happen in the format's order.
+PrismSample prism_trace_sample(PrismWorldRay camera_ray, int max_depth, bool want_path) {
   prism_hashing = want_path;
   prism_hash = 2166136261u;
   PrismSample result;
@@ -227,78 +222,113 @@ PrismSample prism_trace_sample(PrismRay camera_ray, int max_depth, bool want_pat
   result.first_normal = dvec3(0.0LF);
   result.first_albedo = vec3(0.0);
   vec3 w = vec3(1.0), radiance = vec3(0.0);
-  PrismRay ray = camera_ray;
+  PrismWorldRay ray = camera_ray;
   int kind = PRISM_RAY_CAMERA;
-  for (int depth = 1; depth <= max_depth; ++depth) {
+  bool shade1 = false;
+  vec3 shade1_w = vec3(0.0), after_w = vec3(0.0);
+  PrismWorldRay after = camera_ray;
+  int depth = 1;
+  while (depth <= max_depth) {
     ++prism_ray_counts[kind];
     PrismClosest hit = prism_closest(ray, 0.0LF);
-    if (depth == 1) result.first_id = hit.id;
+    bool first = depth == 1 && !shade1;
+    if (first) result.first_id = hit.id;
     prism_note(uint(hit.id));
+    vec3 value;  // a miss's, a light sphere's or a Shade1 ray's radiance
     if (hit.id == PRISM_MISS_ID) {
-      radiance += w * prism_background(ray.dir);
-      break;
-    }
-    if (hit.id < 0) {
-      if (depth == 1) {
+      value = prism_background(ray.dir);
+    } else if (hit.id < 0) {
+      value = prism_lights[-2 - hit.id].color_intensity.rgb;
+      if (first) {
         result.first_t = hit.t;
         result.first_normal = normalize(ray.origin + hit.t * ray.dir - prism_lights[-2 - hit.id].position.xyz);
-        result.first_albedo = prism_lights[-2 - hit.id].color_intensity.rgb;
+        result.first_albedo = value;
       }
-      radiance += w * prism_lights[-2 - hit.id].color_intensity.rgb;
-      break;
-    }
-    PrismShadingPoint s = prism_shading_point(ray, hit);
-    if (depth == 1) {
-      result.first_t = hit.t;
-      result.first_normal = s.front ? s.n : -s.n;
-      result.first_albedo = s.color;
-    }
-    PrismMaterial m = prism_materials[s.material];
-    bool dielectric = m.params.z >= 1.0;
+    } else {
+      PrismShadingPoint s = prism_shading_point(ray, hit);
+      if (first) {
+        result.first_t = hit.t;
+        result.first_normal = s.front ? s.n : -s.n;
+        result.first_albedo = s.color;
+      }
+      PrismMaterial m = prism_materials[s.material];
+      bool dielectric = m.params.z >= 1.0;
+      vec3 absorbed = vec3(1.0);  // times 1.0 is exact: multiplying by it changes nothing
 #ifdef PRISM_FEATURE_ABSORPTION
-    if (dielectric && !s.front) w *= exp(-m.absorb_specular.rgb * float(hit.t));
+      if (dielectric && !s.front) absorbed = exp(-m.absorb_specular.rgb * float(hit.t));
 #endif
-    if (!dielectric) {
-      double r = double(m.params.y);
-      double F = r > 0.0LF ? r + (1.0LF - r) * prism_pow5(1.0LF - s.cosi) : 0.0LF;
-      float weight = s.alpha * float(1.0LF - F);
-      if (weight > 0.0) radiance += w * weight * prism_local_light(s, ray.dir);
-#ifdef PRISM_FEATURE_ALPHA
-      if (s.alpha < 1.0) {
-        w *= 1.0 - s.alpha;
-        ray = prism_spawn(s, ray.dir, -1.0LF);
-        kind = PRISM_RAY_ALPHA;
-        continue;
+      double F = 0.0LF;
+      float weight = 0.0;
+      if (!dielectric && !shade1) {
+        double r = double(m.params.y);
+        F = r > 0.0LF ? r + (1.0LF - r) * prism_pow5(1.0LF - s.cosi) : 0.0LF;
+        weight = s.alpha * float(1.0LF - F);
       }
+      vec3 light = vec3(0.0);
+      if (shade1 || weight > 0.0) light = prism_local_light(s, ray.dir);
+      if (!shade1) {
+        w *= absorbed;
+        if (!dielectric) {
+          if (weight > 0.0) radiance += w * weight * light;
+#ifdef PRISM_FEATURE_ALPHA
+          if (s.alpha < 1.0) {
+            w *= 1.0 - s.alpha;
+            ray = prism_spawn(s, ray.dir, -1.0LF);
+            kind = PRISM_RAY_ALPHA;
+            ++depth;
+            continue;
+          }
 #endif
 #ifdef PRISM_FEATURE_REFLECTION
-      if (F > 0.0LF) {
-        w *= float(F);
-        ray = prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF);
-        kind = PRISM_RAY_REFLECT;
-        continue;
-      }
+          if (F > 0.0LF) {
+            w *= float(F);
+            ray = prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF);
+            kind = PRISM_RAY_REFLECT;
+            ++depth;
+            continue;
+          }
 #endif
+          break;
+        }
+#ifdef PRISM_FEATURE_DIELECTRICS
+        double ior = double(m.params.z);
+        double n1 = s.front ? 1.0LF : ior, n2 = s.front ? ior : 1.0LF, eta = n1 / n2;
+        double dn = dot(s.n, ray.dir);
+        double k = 1.0LF - eta * eta * (1.0LF - dn * dn);
+        PrismWorldRay reflected = prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF);
+        if (k < 0.0LF) {  // total internal reflection: w unchanged
+          ray = reflected;
+          kind = PRISM_RAY_REFLECT;
+          ++depth;
+          continue;
+        }
+        double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
+        double x = n1 <= n2 ? s.cosi : sqrt(k);
+        double Fd = r0 + (1.0LF - r0) * prism_pow5(1.0LF - x);
+        shade1_w = w * float(Fd);
+        after_w = w * float(1.0LF - Fd);
+        after = prism_spawn(s, normalize(eta * ray.dir - (eta * dn + sqrt(k)) * s.n), -1.0LF);
+        ray = reflected;
+        kind = PRISM_RAY_SHADE1;
+        shade1 = true;
+        continue;
+#else
+        ++depth;
+        continue;
+#endif
+      }
+      value = light * absorbed;
+    }
+    if (!shade1) {
+      radiance += w * value;
       break;
     }
-#ifdef PRISM_FEATURE_DIELECTRICS
-    double ior = double(m.params.z);
-    double n1 = s.front ? 1.0LF : ior, n2 = s.front ? ior : 1.0LF, eta = n1 / n2;
-    double dn = dot(s.n, ray.dir);
-    double k = 1.0LF - eta * eta * (1.0LF - dn * dn);
-    if (k < 0.0LF) {  // total internal reflection: w unchanged
-      ray = prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF);
-      kind = PRISM_RAY_REFLECT;
-      continue;
-    }
-    double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
-    double x = n1 <= n2 ? s.cosi : sqrt(k);
-    double F = r0 + (1.0LF - r0) * prism_pow5(1.0LF - x);
-    radiance += w * float(F) * prism_shade1(prism_spawn(s, prism_reflect(ray.dir, s.n), 1.0LF));
-    w *= float(1.0LF - F);
-    ray = prism_spawn(s, normalize(eta * ray.dir - (eta * dn + sqrt(k)) * s.n), -1.0LF);
+    radiance += shade1_w * value;  // the Shade1 ray is done: on along the refracted ray
+    ray = after;
+    w = after_w;
     kind = PRISM_RAY_REFRACT;
-#endif
+    shade1 = false;
+    ++depth;
   }
   result.radiance = radiance;
   result.path_hash = (prism_hash >> 24) ^ (prism_hash & 0xffffffu);  // folded to 24 bits: exact in a float

@@ -310,9 +310,25 @@ std::string scene_name_for_phase(const std::string& scene_file) {
   return scene_file == kStandardInput ? std::string("standard input") : scene_file;
 }
 
-BackendChoice open_backend_showing_it(Registry& registry, const std::string& backend, bool show) {
+BackendChoice open_backend_showing_it(Registry& registry, const std::string& backend, bool show,
+                                      Precision precision) {
   const std::string what = backend == "auto" ? "choosing the backend" : "starting " + backend;
-  return with_phase_line(what, show, [&] { return open_backend(registry, backend); });
+  BackendChoice choice = with_phase_line(what, show, [&] { return open_backend(registry, backend); });
+  set_backend_precision(*choice.backend, choice.name, precision);
+  return choice;
+}
+
+Precision precision_flag(const std::string& text) {
+  if (auto precision = parse_precision(text)) return *precision;
+  throw InputError("--precision: '" + text + "' is not one of auto, float, double");
+}
+
+void set_backend_precision(Backend& backend, const std::string& name, Precision precision) {
+  try {
+    backend.set_precision(precision);
+  } catch (const InputError& e) {
+    throw InputError("--precision " + std::string(precision_name(precision)) + ": backend '" + name + "': " + e.what());
+  }
 }
 
 void prepare_showing_it(const BackendChoice& choice, const Scene& scene, bool show) {

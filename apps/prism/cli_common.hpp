@@ -119,12 +119,24 @@ std::string scene_name_for_phase(const std::string& scene_file);
 // open_backend and Backend::prepare, each shown as a phase line:
 // "starting embree..." ("choosing the backend..." for auto) and
 // "embree: preparing the scene..." (building its BVH, uploading it).
-BackendChoice open_backend_showing_it(Registry& registry, const std::string& backend, bool show);
+// Sets `precision` (Backend::set_precision) before anything is prepared.
+BackendChoice open_backend_showing_it(Registry& registry, const std::string& backend, bool show,
+                                      Precision precision = Precision::automatic);
 void prepare_showing_it(const BackendChoice& choice, const Scene& scene, bool show);
 
 // Prints the core's notices of slow steps (prism/status.hpp) on stderr,
 // each on a line of its own: "prism: opengl: compiling the kernel (...)".
 void show_status_notices();
+
+// --precision auto|float|double, on render, trace, bench and conform.
+inline constexpr const char* kPrecisionHelp =
+    "Intersection arithmetic: auto (the backend's choice), float (each plugin's float instantiation; "
+    "the reference backend) or double (default auto)";
+// The Precision --precision names; InputError naming the flag otherwise.
+Precision precision_flag(const std::string& text);
+// Backend::set_precision on an opened backend; a refusal is InputError
+// naming the backend and the flag.
+void set_backend_precision(Backend& backend, const std::string& name, Precision precision);
 
 // --threads N: InputError unless N >= 1.
 void check_thread_count(const std::optional<int>& threads);

@@ -1,5 +1,5 @@
 // prism bench SCENE [-b BACKENDS] [--frames N] [--warmup N] [--width W --height H --spp S --max-depth D]
-//                   [--orbit DEGREES] [--no-check] [--json F] [--profile]
+//                   [--orbit DEGREES] [--no-check] [--json F] [--profile] [--precision auto|float|double]
 // Frame time, FPS and rays per second per backend, the one-off costs apart,
 // and the memory held while rendering (apps/prism/bench/bench_run.hpp).
 // Exit 1 when a backend's last frame differs from a fresh render of its camera.
@@ -19,7 +19,7 @@ namespace prism::cli {
 namespace {
 
 struct BenchArgs {
-  std::string scene, json;
+  std::string scene, json, precision = "auto";
   std::vector<std::string> backends;
   std::optional<int> width, height, spp, max_depth;
   int frames = 20, warmup = 2;
@@ -70,6 +70,7 @@ void print_result(const bench::Result& r) {
               r.backend.c_str(), r.device.c_str(), r.frame_ms.size(), r.median_ms(), r.percentile_ms(10),
               r.percentile_ms(90), r.percentile_ms(0), r.percentile_ms(100), r.fps());
   std::printf("  processor time: %.1f ms per frame, all threads\n", r.cpu_ms_per_frame);
+  if (!r.precision.empty()) std::printf("  precision: %s\n", r.precision.c_str());
   std::printf("  rays: %.2f M/s total", r.rays_per_second() / 1e6);
   const double seconds = r.rays > 0 ? double(r.rays) / r.rays_per_second() : 0;
   for (const auto& [kind, count] : r.rays_by_kind)
@@ -102,6 +103,7 @@ nlohmann::ordered_json to_json(const bench::Result& r) {
     return j;
   }
   j["device"] = r.device;
+  j["precision"] = r.precision;
   j["frames"] = r.frame_ms.size();
   j["frame_ms"] = {{"median", r.median_ms()}, {"p10", r.percentile_ms(10)}, {"p90", r.percentile_ms(90)},
                    {"min", r.percentile_ms(0)}, {"max", r.percentile_ms(100)}, {"all", r.frame_ms}};
@@ -139,6 +141,7 @@ int run_bench(const BenchArgs& args) {
   options.check = !args.no_check;
   options.profile = args.profile;
   options.settings.profile = args.profile;
+  options.precision = precision_flag(args.precision);
   const std::vector<std::string> names = backends_to_run(registry, args);
 
   const ImageSettings& image = options.settings.image;
@@ -184,6 +187,7 @@ Command add_bench_command(CLI::App& app) {
   sub->add_option("--orbit", args->orbit, "Camera yaw per frame about the viewer's orbit target, degrees (0.25)");
   sub->add_flag("--no-check", args->no_check, "Skip comparing the last frame with a fresh render of its camera");
   sub->add_option("--json", args->json, "Write the results to this JSON file");
+  sub->add_option("--precision", args->precision, kPrecisionHelp);
   sub->add_flag("--profile", args->profile,
                 "Print where a frame's time goes: camera rays, secondary rays, shadow rays, shading, image write");
   return [args] { return run_bench(*args); };

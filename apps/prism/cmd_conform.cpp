@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
 #include "conform/conform.hpp"
 #include "prism/errors.hpp"
@@ -19,7 +20,7 @@ struct ConformArgs {
   std::vector<std::string> scenes;
   std::vector<std::string> backends;
   std::string report, references = "tests/conformance/references", stability;
-  std::string size;
+  std::string size, precision = "auto";
   bool sweep = false;
   int sweep_max_spp = 16;
 };
@@ -42,6 +43,7 @@ int run_conform(const ConformArgs& args) {
   options.sweep = args.sweep;
   options.sweep_max_spp = args.sweep_max_spp;
   options.references = args.references;
+  options.precision = precision_flag(args.precision);
   if (!args.size.empty()) options.size = conform::parse_size(args.size);
   if (!args.report.empty()) fs::create_directories(args.report);
   std::optional<conform::StabilityResults> stability;
@@ -79,6 +81,8 @@ Command add_conform_command(CLI::App& app) {
                   "Folder of the stored high-spp <scene>.exr images (default tests/conformance/references)");
   sub->add_option("--stability", args->stability,
                   "Show the stability suite's results from this folder (prism_stability --out) in the report");
+  sub->add_option("--precision", args->precision,
+                  std::string(kPrecisionHelp) + "; the backends tested, not the reference they are judged against");
   return [args] { return run_conform(*args); };
 }
 

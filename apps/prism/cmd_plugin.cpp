@@ -6,7 +6,8 @@
 // prism plugin check FILE.so [--object JSON] [--rays N] [-b BACKENDS]
 // Loads one primitive plugin file, prints its descriptor (type, version,
 // ABI version, fields, GLSL, refine), checks its packet entries against
-// its scalar intersector lane by lane, then traces random rays at one object
+// its scalar intersector lane by lane and measures its float entry against
+// it (the stability suite's float caps), then traces random rays at one object
 // of its type through the reference backend (the plugin's own CPU
 // intersector, in double) and through every other usable backend (embree:
 // the same intersector behind Embree's BVH and the plugin's bounds; the GPU
@@ -177,6 +178,29 @@ std::vector<TraceResult> trace_on(const BackendPlugin& plugin, const std::string
   return results;
 }
 
+// The float entry against the double one: on the random rays held to the
+// stability suite's float caps (misclassified <= 1 %, t p99 <= 1e-4:
+// tests/stability/measure.hpp); on the rays from inside and the grazing
+// rays, whose side of the surface is arbitrary to a rounding, reported.
+bool print_float_check(const FloatCheck& f) {
+  if (!f.has_float) {
+    std::printf("  float entry: the double intersector stands in (no float instantiation: a plugin written in the "
+                "shared dialect gets one)\n");
+    return true;
+  }
+  constexpr double kMisclassifiedPercentCap = 1.0, kTP99Cap = 1e-4;
+  const FloatTally& r = f.random;
+  const bool pass = r.misclassified_percent() <= kMisclassifiedPercentCap && r.t_p99 <= kTP99Cap;
+  std::printf("  float entry: %s on %d random rays: misclassified %.2f %% (cap %g %%), relative t error p99 %.2g "
+              "(cap %g), max %.2g\n",
+              pass ? "within the float caps" : "FAIL: over the float caps", r.rays, r.misclassified_percent(),
+              kMisclassifiedPercentCap, r.t_p99, kTP99Cap, r.t_max);
+  std::printf("  float entry on %d rays from inside and grazing rays (reported): misclassified %.2f %%, relative t "
+              "error p99 %.2g, max %.2g\n",
+              f.stiff.rays, f.stiff.misclassified_percent(), f.stiff.t_p99, f.stiff.t_max);
+  return pass;
+}
+
 int run_plugin_check(const PluginCheckArgs& args) {
   if (args.rays < 1 || args.rays > 10000000) throw InputError("--rays must be 1..10000000");
   std::string error;
@@ -232,6 +256,7 @@ int run_plugin_check(const PluginCheckArgs& args) {
   std::printf("  packet entries: %s on %d lanes (with rays from inside and grazing rays)%s%s\n",
               all_pass ? "agree with intersect bit for bit" : "FAIL: disagree with intersect", packets.rays,
               all_pass ? "" : ": ", packets.first.c_str());
+  all_pass = print_float_check(check_float_entry(scene.objects[0], rays)) && all_pass;
 
   std::vector<std::string> names = args.backends;
   if (names.empty()) {

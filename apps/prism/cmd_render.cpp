@@ -1,6 +1,6 @@
 // prism render SCENE [-b BACKEND] -o OUT.(png|exr|jpg|tif|hdr|-) [overrides] [--aov id,path,depth,normal,albedo] [--stats F.json]
 //   [--frames N [--orbit DEG] | --cameras FILE] [--camera-position X,Y,Z --look-at X,Y,Z] [--fov DEG]
-//   [--threads N] [-q | -v] [--mpi [--tile N]]
+//   [--threads N] [--precision auto|float|double] [-q | -v] [--mpi [--tile N]]
 #include <unistd.h>
 
 #include <cstdio>
@@ -23,7 +23,7 @@ namespace {
 constexpr const char* kStdout = "-";  // -o -: PNG to standard output
 
 struct RenderArgs {
-  std::string scene, backend = "auto", output, stats, cameras;
+  std::string scene, backend = "auto", output, stats, cameras, precision = "auto";
   std::optional<int> width, height, spp, max_depth, threads;
   std::vector<std::string> aov;
   int frames = 0;
@@ -63,6 +63,8 @@ void check_stdout_output(const RenderArgs& args) {
 void check_arguments(const RenderArgs& args) {
   if (args.quiet && args.verbose) throw InputError("-q and -v: give one or the other");
   check_thread_count(args.threads);
+  if (precision_flag(args.precision) != Precision::automatic && args.mpi)
+    throw InputError("--precision and --mpi: the ranks choose their backend's precision (give one or the other)");
   check_camera_flags(args.camera);
   if (!args.camera.position.empty() && !args.cameras.empty())
     throw InputError("--camera-position and --cameras: give one or the other");
@@ -112,7 +114,7 @@ int run_render(const RenderArgs& args) {
   RenderSettings settings = settings_for(scene, args);
   const FramePlan plan = plan_frames(scene, args.output, args.frames, args.orbit, args.cameras);
   ms["load"] = timer.lap();
-  BackendChoice choice = open_backend_showing_it(registry, args.backend, show_steps);
+  BackendChoice choice = open_backend_showing_it(registry, args.backend, show_steps, precision_flag(args.precision));
   prepare_showing_it(choice, scene, show_steps);
   ms["build"] = timer.lap();
   std::optional<StagedFile> last;
@@ -225,6 +227,7 @@ Command add_render_command(CLI::App& app) {
   sub->add_option("--cameras", args->cameras, "Render the cameras listed in this JSON file ({\"cameras\": [...]}) as frames");
   sub->add_option("--threads", args->threads,
                   "Threads of the CPU backends, at least 1, on each rank with --mpi (default: one per core)");
+  sub->add_option("--precision", args->precision, kPrecisionHelp);
   sub->add_flag("-q,--quiet", args->quiet, "No progress bar and no summary line");
   sub->add_flag("-v,--verbose", args->verbose, "Also print the thread count and the phase times --stats writes");
   sub->add_flag("--mpi", args->mpi, "Deal tiles out over MPI ranks (mpirun -np N prism render ... --mpi)");

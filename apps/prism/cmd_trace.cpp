@@ -1,4 +1,5 @@
-// prism trace SCENE [-b BACKEND] --rays IN.csv -o OUT.csv [--digits N] [--stats F.json] [--threads N] [-v]
+// prism trace SCENE [-b BACKEND] --rays IN.csv -o OUT.csv [--digits N] [--stats F.json] [--threads N]
+//   [--precision auto|float|double] [-v]
 // One line per ray in: ox,oy,oz,dx,dy,dz[,tmin]; one line per ray out:
 // t,object,nx,ny,nz of the closest hit with t > tmin (a miss: inf,-1,0,0,0).
 #include <cstdio>
@@ -17,7 +18,7 @@ namespace prism::cli {
 namespace {
 
 struct TraceArgs {
-  std::string scene, backend = "auto", rays, output, stats;
+  std::string scene, backend = "auto", rays, output, stats, precision = "auto";
   int digits = 9;
   std::optional<int> threads;
   bool verbose = false;
@@ -41,6 +42,7 @@ std::string format_results(const std::vector<TraceResult>& results, int digits) 
 int run_trace(const TraceArgs& args) {
   check_output_path(args.output, {".csv"});
   if (!args.stats.empty()) check_output_path(args.stats, {".json"});
+  const Precision precision = precision_flag(args.precision);
   const auto threads = limit_threads(args.threads);
   PhaseTimer timer;
   std::map<std::string, double> ms;
@@ -51,7 +53,7 @@ int run_trace(const TraceArgs& args) {
                                 [&] { return load_scene(args.scene, registry); });
   std::vector<TraceQuery> rays = with_phase_line("reading " + args.rays, kShowSteps, [&] { return read_ray_csv(args.rays); });
   ms["load"] = timer.lap();
-  BackendChoice choice = open_backend_showing_it(registry, args.backend, kShowSteps);
+  BackendChoice choice = open_backend_showing_it(registry, args.backend, kShowSteps, precision);
   prepare_showing_it(choice, scene, kShowSteps);
   ms[ms_key::kBuild] = timer.lap();
   const std::string tracing = choice.name + ": tracing " + std::to_string(rays.size()) + (rays.size() == 1 ? " ray" : " rays");
@@ -81,6 +83,7 @@ Command add_trace_command(CLI::App& app) {
   sub->add_option("--digits", args->digits, "Significant digits, 1 to 17 (default 9)")->check(CLI::Range(1, 17));
   sub->add_option("--stats", args->stats, "Write run statistics to this JSON file");
   sub->add_option("--threads", args->threads, "Threads of the CPU backends, at least 1 (default: one per core)");
+  sub->add_option("--precision", args->precision, kPrecisionHelp);
   sub->add_flag("-v,--verbose", args->verbose, "Print the phase times --stats writes");
   return [args] { return run_trace(*args); };
 }

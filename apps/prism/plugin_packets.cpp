@@ -1,5 +1,7 @@
 #include "plugin_packets.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -97,6 +99,44 @@ PacketCheck check_packet_entries(const Object& object, std::span<const TraceQuer
   PacketCheck out;
   for (size_t at = 0; at < rays.size(); at += kLanes)
     check_packet(object, &rays[at], unsigned(std::min<size_t>(kLanes, rays.size() - at)), rng, out);
+  return out;
+}
+
+namespace {
+
+// Both entries on each ray; the relative t errors where both hit.
+FloatTally tally_float_entry(const Object& object, std::span<const Ray> rays) {
+  FloatTally out;
+  std::vector<double> t_errors;
+  for (const Ray& ray : rays) {
+    ++out.rays;
+    PrismHit in_double, in_float;
+    const bool hit_double = intersect_object(object, ray, 0.0, kInfinity, in_double, kIntersectDouble);
+    const bool hit_float = intersect_object(object, ray, 0.0, kInfinity, in_float, kIntersectFloat);
+    if (hit_double != hit_float) ++out.misclassified;
+    if (hit_double && hit_float) t_errors.push_back(std::abs(in_float.t - in_double.t) / in_double.t);
+  }
+  if (!t_errors.empty()) {
+    std::sort(t_errors.begin(), t_errors.end());
+    out.t_p99 = t_errors[std::min(t_errors.size() - 1, size_t(std::ceil(0.99 * double(t_errors.size()))) - 1)];
+    out.t_max = t_errors.back();
+  }
+  return out;
+}
+
+}  // namespace
+
+FloatCheck check_float_entry(const Object& object, std::span<const TraceQuery> given) {
+  FloatCheck out;
+  out.has_float = object.desc->intersect_float != object.desc->intersect;
+  std::vector<Ray> random, stiff;
+  for (const Ray& ray : rays_with_stiff_cases(object, given)) {
+    const bool is_given = random.size() < given.size() && ray.origin == given[random.size()].origin &&
+                          ray.dir == given[random.size()].dir;
+    (is_given ? random : stiff).push_back(ray);
+  }
+  out.random = tally_float_entry(object, random);
+  out.stiff = tally_float_entry(object, stiff);
   return out;
 }
 

@@ -1,6 +1,7 @@
-// The packet entries of a primitive plugin (intersect_packet,
-// occluded_packet) against its scalar `intersect`, lane by lane, for
-// `prism plugin check` and the tests that run it on every plugin built.
+// The entries of a primitive plugin beside its scalar `intersect`, for
+// `prism plugin check` and the tests that run it on every plugin built: the
+// packet entries (intersect_packet, occluded_packet) lane by lane, bit for
+// bit; the float entry (intersect_float) measured against it.
 #pragma once
 
 #include <span>
@@ -19,5 +20,24 @@ struct PacketCheck {
 
 // `rays` as given, plus a ray from inside and a grazing ray at each hit.
 PacketCheck check_packet_entries(const Object& object, std::span<const TraceQuery> rays);
+
+// The float entry against the double one, the double answer taken as the
+// truth: on the random rays (`given`), and on the rays from inside and the
+// grazing rays check_packet_entries adds. A grazing ray skims the surface
+// exactly at a hit, so which side of it a rounding falls is arbitrary in
+// any precision: those are reported apart.
+struct FloatTally {
+  int rays = 0;
+  int misclassified = 0;  // hit in one precision and missed in the other
+  double t_p99 = 0;       // relative t error of the rays both hit, 99th percentile
+  double t_max = 0;
+  double misclassified_percent() const { return rays > 0 ? 100.0 * misclassified / rays : 0.0; }
+};
+struct FloatCheck {
+  bool has_float = false;  // false: intersect_float is `intersect` itself (no float instantiation)
+  FloatTally random;       // the given rays
+  FloatTally stiff;        // the rays from inside and the grazing rays
+};
+FloatCheck check_float_entry(const Object& object, std::span<const TraceQuery> rays);
 
 }  // namespace prism::cli

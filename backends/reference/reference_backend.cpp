@@ -1,6 +1,9 @@
 // The reference backend: the ground truth every other backend is judged
 // against. Scalar, double precision, brute force over every object in id
 // order (no acceleration structure to get wrong), the core's shading.
+// With --precision float it intersects through each plugin's float
+// instantiation instead (intersect_float): the CPU model of a float GPU
+// kernel, which the stability suite measures; shading stays double.
 #include <chrono>
 #include <cstdio>
 
@@ -13,7 +16,7 @@ namespace {
 
 class BruteForceQuery : public ObjectQuery {
  public:
-  explicit BruteForceQuery(const Scene& scene) : scene_(scene) {}
+  BruteForceQuery(const Scene& scene, IntersectEntry entry) : scene_(scene), entry_(entry) {}
 
   Hit closest(const Ray& ray, double tmin) const override {
     Hit best;
@@ -21,7 +24,7 @@ class BruteForceQuery : public ObjectQuery {
       PrismHit hit;
       // Visiting ids in order and asking for t strictly below the best keeps the lower id on ties.
       double tmax = best.found() ? std::nextafter(best.t, 0.0) : kInfinity;
-      if (intersect_object(scene_.objects[id], ray, tmin, tmax, hit) && hit.t < best.t) {
+      if (intersect_object(scene_.objects[id], ray, tmin, tmax, hit, entry_) && hit.t < best.t) {
         best.t = hit.t;
         best.id = static_cast<int32_t>(id);
         best.prim = hit;
@@ -32,13 +35,16 @@ class BruteForceQuery : public ObjectQuery {
 
   int32_t occluder(const Ray& ray, double tmax) const override {
     for (size_t id = 0; id < scene_.objects.size(); ++id) {
-      if (blocks(scene_.objects[id], ray, tmax)) return static_cast<int32_t>(id);
+      if (blocks(scene_.objects[id], ray, tmax, entry_)) return static_cast<int32_t>(id);
     }
     return kMissId;
   }
 
+  IntersectEntry entry() const override { return entry_; }
+
  private:
   const Scene& scene_;
+  IntersectEntry entry_;
 };
 
 class ReferenceBackend : public Backend {
@@ -50,10 +56,15 @@ class ReferenceBackend : public Backend {
     }
   }
 
+  // Every precision: auto is double, the reference's own.
+  void set_precision(Precision precision) override {
+    entry_ = precision == Precision::float32 ? kIntersectFloat : kIntersectDouble;
+  }
+
   void prepare(const Scene& scene) override {
     scene_ = &scene;
-    query_ = std::make_unique<BruteForceQuery>(scene);
-    stats_.info[info_key::kPrecision] = "double";
+    query_ = std::make_unique<BruteForceQuery>(scene, entry_);
+    stats_.info[info_key::kPrecision] = entry_ == kIntersectFloat ? "float" : "double";
     stats_.counters[counter::kSceneBytes] = double(scene.packed_object_bytes());
     stats_.counters[counter::kPrepares] += 1;
     stats_.counters[counter::kObjectsUploaded] += double(scene.objects.size());
@@ -65,7 +76,7 @@ class ReferenceBackend : public Backend {
   // read again.
   void update(const Scene& scene, const SceneChanges& changes) override {
     stats_.counters[counter::kUpdates] += 1;
-    if (scene_ != &scene) query_ = std::make_unique<BruteForceQuery>(scene);
+    if (scene_ != &scene) query_ = std::make_unique<BruteForceQuery>(scene, entry_);
     scene_ = &scene;
     stats_.counters[counter::kSceneBytes] = double(scene.packed_object_bytes());
     stats_.counters[counter::kObjectsUploaded] +=
@@ -80,13 +91,14 @@ class ReferenceBackend : public Backend {
 
  private:
   const Scene* scene_ = nullptr;
+  IntersectEntry entry_ = kIntersectDouble;
   std::unique_ptr<BruteForceQuery> query_;
   BackendStats stats_;
 };
 
 void probe(PrismBackendProbe* out) {
   out->usable = 1;
-  std::snprintf(out->reason, sizeof out->reason, "CPU, double precision, brute force");
+  std::snprintf(out->reason, sizeof out->reason, "CPU, double precision (float with --precision float), brute force");
 }
 
 Backend* create() { return new ReferenceBackend(); }

@@ -5,9 +5,11 @@
 // PRISM_FEATURE_* defines) and before the shared library
 // (prism/sdk/modules/library.shared.glsl) and every plugin source.
 //
-// Precision: double, unless the header defines PRISM_REAL_FLOAT (the float
+// Precision: double, unless the header defines PRISM_REAL_FLOAT (a kernel
+// whose plugins intersect in float, `--precision float`; also the float
 // instantiation that `scripts/check_plugin_glsl.sh` compiles). The record
-// buffer is doubles either way, as the C++ `pack` writes it.
+// buffer is doubles either way, as the C++ `pack` writes it, and the
+// kernel's own world positions and t stay double (gpu/scene.glsl).
 //
 // GLSL has no double atan/asin: prism_atan2 and prism_safe_asin evaluate in
 // float, which is far inside what a texel or an 8-bit pixel resolves; only

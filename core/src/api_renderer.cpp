@@ -30,8 +30,10 @@ struct Renderer::Impl {
   uint64_t seen_revision = 0;
 };
 
-Renderer::Renderer(Engine& engine, const std::string& backend)
-    : impl_(std::make_unique<Impl>(Impl{open_backend(engine.registry(), backend)})) {}
+Renderer::Renderer(Engine& engine, const std::string& backend, Precision precision)
+    : impl_(std::make_unique<Impl>(Impl{open_backend(engine.registry(), backend)})) {
+  impl_->opened.backend->set_precision(precision);
+}
 Renderer::~Renderer() = default;
 
 const std::string& Renderer::backend_name() const { return impl_->opened.name; }

@@ -6,6 +6,31 @@
 
 namespace prism {
 
+const char* precision_name(Precision precision) {
+  switch (precision) {
+    case Precision::float32:
+      return "float";
+    case Precision::float64:
+      return "double";
+    case Precision::automatic:
+      break;
+  }
+  return "auto";
+}
+
+std::optional<Precision> parse_precision(std::string_view text) {
+  for (Precision p : {Precision::automatic, Precision::float32, Precision::float64})
+    if (text == precision_name(p)) return p;
+  return std::nullopt;
+}
+
+void Backend::set_precision(Precision precision) {
+  if (precision == Precision::float32)
+    throw InputError(
+        "this backend computes in double only; --precision float is for a backend with a float path "
+        "(the reference backend runs each plugin's float instantiation)");
+}
+
 void check_region(const RenderSettings& settings) {
   if (!settings.region) return;
   const PixelRect& r = *settings.region;

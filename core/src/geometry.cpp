@@ -113,16 +113,16 @@ bool reject_hit(const Object& object, double t, double tmin, double tmax) {
   return false;
 }
 
-bool blocks(const Object& object, const Ray& ray, double tmax) {
+bool blocks(const Object& object, const Ray& ray, double tmax, IntersectEntry entry) {
   PrismHit hit;
-  return intersect_object(object, ray, 0.0, tmax, hit) && hit.t < tmax;
+  return intersect_object(object, ray, 0.0, tmax, hit, entry) && hit.t < tmax;
 }
 
-SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit) {
+SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by) {
   PrismRay local = to_local(object, ray);
   PrismSurface s = plugin_surface(object, local, hit);
   double t = hit.t;
-  if (object.desc->refine && ill_conditioned(local, hit.t, s)) {
+  if (object.desc->refine && found_by == kIntersectDouble && ill_conditioned(local, hit.t, s)) {
     const PrismRayExt ext = to_local_ext(object, ray);
     PrismHit polished = hit;
     object.desc->refine(object.record(), &ext, &polished);

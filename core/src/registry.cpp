@@ -98,8 +98,9 @@ std::string primitive_desc_problem(const PrismPrimitiveDesc& d) {
     return "desc_size " + std::to_string(d.desc_size) + " (expected " + std::to_string(sizeof(PrismPrimitiveDesc)) + ")";
   if (!plausible_name(d.type_name)) return "type_name is missing or not a name";
   if (!d.plugin_version) return "plugin_version is missing";
-  if (!d.intersect || !d.surface || !d.pack || !d.bounds || !d.intersect_packet || !d.occluded_packet)
-    return "missing functions (intersect, surface, pack, bounds, intersect_packet, occluded_packet)";
+  if (!d.intersect || !d.surface || !d.pack || !d.bounds || !d.intersect_packet || !d.occluded_packet ||
+      !d.intersect_float)
+    return "missing functions (intersect, surface, pack, bounds, intersect_packet, occluded_packet, intersect_float)";
   if (d.record_size % 16 != 0 || d.record_size > kMaxRecordSize)
     return "record_size " + std::to_string(d.record_size) + " (a multiple of 16, at most " +
            std::to_string(kMaxRecordSize) + ")";

@@ -75,7 +75,7 @@ Hit Shader::closest_in_phase(const Ray& ray, Phase phase) const {
 
 Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   const Object& object = scene_.objects[size_t(hit.id)];
-  SurfacePoint sp = surface_of(object, ray, hit.prim);
+  SurfacePoint sp = surface_of(object, ray, hit.prim, query_.entry());
   Surface s;
   s.position = sp.position;
   s.outward = sp.normal;
@@ -118,7 +118,7 @@ bool Shader::shadowed(size_t light, const Ray& ray, double distance) {
   // object: trying it first skips the whole query for them. The answer is
   // the same either way (any blocking object will do).
   int32_t& last = last_blocker_[light];
-  if (last != kMissId && blocks(scene_.objects[size_t(last)], ray, distance)) return true;
+  if (last != kMissId && blocks(scene_.objects[size_t(last)], ray, distance, query_.entry())) return true;
   const int32_t blocker = query_.light_occluder(light, ray, distance);
   if (blocker != kMissId) last = blocker;
   return blocker != kMissId;

@@ -237,7 +237,9 @@ struct RenderOptions {
 // backend up to date with the scene first.
 class Renderer {
  public:
-  Renderer(Engine& engine, const std::string& backend = "auto");
+  // `precision` as `--precision` (Backend::set_precision): a backend that
+  // cannot compute in it throws InputError here.
+  Renderer(Engine& engine, const std::string& backend = "auto", Precision precision = Precision::automatic);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

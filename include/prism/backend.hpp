@@ -22,6 +22,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -143,9 +144,23 @@ inline void assign_aovs(Image& image, const RenderSettings& settings) {
 // InputError unless the region lies inside the image and is not empty.
 void check_region(const RenderSettings& settings);
 
+// The arithmetic a backend intersects in (`--precision`). `float32` runs
+// each plugin's float instantiation (PrismPrimitiveDesc::intersect_float on
+// the CPU); `float64` the double one; `automatic` lets the backend choose
+// (every backend today: double).
+enum class Precision { automatic, float32, float64 };
+
+// "auto", "float", "double": the `--precision` spellings.
+const char* precision_name(Precision precision);
+// The Precision spelt `text`, or nullopt.
+std::optional<Precision> parse_precision(std::string_view text);
+
 class Backend {
  public:
   virtual ~Backend() = default;
+  // Called before prepare. The default accepts automatic and float64 and
+  // throws InputError for float32: a backend with a float path overrides it.
+  virtual void set_precision(Precision precision);
   // Build acceleration structures for `scene`, which outlives the backend's use of it.
   virtual void prepare(const Scene& scene) = 0;
   // Brings the backend up to date with `scene` (the one last prepared, edited
@@ -161,8 +176,9 @@ class Backend {
 
 }  // namespace prism
 
-// 3: Backend::update; 4: RenderSettings::profile; 5: PrismBackendDesc::layout_fingerprint
-#define PRISM_BACKEND_ABI_VERSION 5u
+// 3: Backend::update; 4: RenderSettings::profile; 5: PrismBackendDesc::layout_fingerprint;
+// 6: Backend::set_precision
+#define PRISM_BACKEND_ABI_VERSION 6u
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
 struct PrismBackendProbe {

@@ -29,6 +29,9 @@ class ObjectQuery {
   }
   // True when any object is hit with 0 < t < tmax.
   bool occluded(const Ray& ray, double tmax) const { return occluder(ray, tmax) != kMissId; }
+  // The plugin entry the queries intersect with; the shading path's own
+  // tests of one object (the last blocker, the surface's polish) follow it.
+  virtual IntersectEntry entry() const { return kIntersectDouble; }
 };
 
 // Renders the whole image, tiles in parallel (TBB) unless `parallel` is false.

@@ -56,10 +56,17 @@ inline PrismRay to_local(const Object& object, const Ray& ray) {
 // exceptions) and drops the hit. Returns false. Never reached by a sound plugin.
 bool reject_hit(const Object& object, double t, double tmin, double tmax);
 
+// Which of a plugin's intersectors a CPU query calls: `intersect` (double),
+// or `intersect_float` (--precision float on the reference backend).
+using IntersectEntry = int (*PrismPrimitiveDesc::*)(const void*, const PrismRay*, double, double, PrismHit*);
+inline constexpr IntersectEntry kIntersectDouble = &PrismPrimitiveDesc::intersect;
+inline constexpr IntersectEntry kIntersectFloat = &PrismPrimitiveDesc::intersect_float;
+
 // Closest hit on one object with tmin < t <= tmax.
-inline bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit) {
+inline bool intersect_object(const Object& object, const Ray& ray, double tmin, double tmax, PrismHit& hit,
+                             IntersectEntry entry = kIntersectDouble) {
   const PrismRay local = to_local(object, ray);
-  if (object.desc->intersect(object.record(), &local, tmin, tmax, &hit) == 0) return false;
+  if ((object.desc->*entry)(object.record(), &local, tmin, tmax, &hit) == 0) return false;
   // The plugin's word is checked, not trusted (a NaN fails the first test).
   if (!(hit.t > tmin && hit.t <= tmax) || hit.t == kInfinity) [[unlikely]]
     return reject_hit(object, hit.t, tmin, tmax);
@@ -106,15 +113,18 @@ inline uint32_t blocks_packet(const Object& object, const Ray* rays, uint32_t ac
 }
 
 // Whether one object is hit with 0 < t < tmax: the occlusion test.
-bool blocks(const Object& object, const Ray& ray, double tmax);
+bool blocks(const Object& object, const Ray& ray, double tmax, IntersectEntry entry = kIntersectDouble);
 
 // World-space point, outward normal and uv of a hit found by intersect_object.
 // A plugin's surface with a non-finite point, normal or uv (or a polish to a
 // non-finite t) throws RuntimeError naming the plugin and the object.
 // Where one ulp of input rounding could move the hit's t by more than ~1e-11
 // relative (a grazing ray, a hit far from the object's origin), the plugin's
-// `refine` first polishes t in long double; `t` is the result.
-SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit);
+// `refine` first polishes t in long double; `t` is the result. A hit found
+// by `intersect_float` is not polished: the float path models a GPU kernel,
+// which has no wider type to polish in.
+SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit,
+                        IntersectEntry found_by = kIntersectDouble);
 
 // Whether a hit at `t` on the local ray, with local surface point and
 // normal `s`, is that ill-conditioned (exposed for tests).

@@ -25,6 +25,14 @@
  * tracer (Embree's rtcIntersect16) pays one call per candidate object for a
  * whole packet instead of one per ray. The SDK's `describe_primitive`
  * builds both from the scalar `intersect`; a plugin may supply its own.
+ *
+ * Version 4 added `intersect_float`: the same query computed in float32, the
+ * CPU model of what a float GPU kernel computes once the host has re-centred
+ * the ray in double (`--precision float` on the reference backend). A plugin
+ * written in the shared dialect gets it from the float instantiation of its
+ * one source (the SDK's PRISM_SHARED_INTERSECT); a hand-written plugin gets
+ * its double `intersect` there (describe_primitive's default), which a
+ * caller can recognise by the equal pointers.
  * A plugin built against an older version is refused at load with a
  * message that says to rebuild it against this SDK.
  */
@@ -38,7 +46,7 @@
 extern "C" {
 #endif
 
-#define PRISM_PRIMITIVE_ABI_VERSION 3u
+#define PRISM_PRIMITIVE_ABI_VERSION 4u
 #define PRISM_PRIMITIVE_ENTRY_SYMBOL "prism_primitive_entry"
 #define PRISM_EXPORT __attribute__((visibility("default")))
 
@@ -166,6 +174,16 @@ typedef struct PrismPrimitiveDesc {
   /* The mask of active lanes hit with tmin < t < tmax (an occlusion test:
    * a hit at exactly tmax, the light, does not count). */
   uint32_t (*occluded_packet)(const void* record, const PrismRayPacket* rays, uint32_t active);
+
+  /* Version 4, required. The contract of `intersect` (the same local-frame
+   * ray and bounds, in double; a hit with tmin < t <= tmax, t in double),
+   * computed in float32: the ray is rounded to float (nearest), tmin up and
+   * tmax down (so every float t the plugin accepts lies in the double
+   * bounds), and the plugin's float instantiation answers. Only the hit and
+   * its t are float: `surface` reads the hit in double as usual (the hit's
+   * data, a local point for some plugins, then carries float rounding).
+   * Equal to `intersect` for a plugin without a float instantiation. */
+  int (*intersect_float)(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit);
 } PrismPrimitiveDesc;
 
 typedef const PrismPrimitiveDesc* (*PrismPrimitiveEntryFn)(void);

@@ -54,7 +54,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
     store3(p, hit->data);
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::box_intersect>>(
+const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(box_intersect)>(
     "box", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(BoxRecord), validate_nothing, pack, bounds,
     f64::abi_surface<f64::box_surface>, kPluginGlsl, "box", refine);
 

@@ -38,7 +38,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_axial_quadric_hit(-(slope * slope), 0, ray, hit);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric<f64::abi_intersect<f64::cone_intersect>, f64::abi_surface<f64::cone_surface>>(
+const PrismPrimitiveDesc kDesc = describe_axial_quadric<PRISM_SHARED_INTERSECT(cone_intersect), f64::abi_surface<f64::cone_surface>>(
     "cone", kFields, pack, refine, kPluginGlsl, "cone");
 
 }  // namespace

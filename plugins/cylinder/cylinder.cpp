@@ -38,7 +38,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_axial_quadric_hit(0, -(radius * radius), ray, hit);
 }
 
-const PrismPrimitiveDesc kDesc = describe_axial_quadric<f64::abi_intersect<f64::cylinder_intersect>, f64::abi_surface<f64::cylinder_surface>>(
+const PrismPrimitiveDesc kDesc = describe_axial_quadric<PRISM_SHARED_INTERSECT(cylinder_intersect), f64::abi_surface<f64::cylinder_surface>>(
     "cylinder", kFields, pack, refine, kPluginGlsl, "cylinder");
 
 }  // namespace

@@ -74,7 +74,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_hit(*ray, *hit, [&](const Vec3x& p) { return ImplicitSample{dot(normal, p - point), normal}; });
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::plane_intersect>>(
+const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(plane_intersect)>(
     "plane", 0, kFields, sizeof(PlaneRecord), validate_nothing, pack, bounds, f64::abi_surface<f64::plane_surface>,
     kPluginGlsl, "plane", refine);
 

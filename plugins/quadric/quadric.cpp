@@ -92,7 +92,7 @@ int bounds(const void* record, double lo[3], double hi[3]) {
 }
 
 const PrismPrimitiveDesc kDesc =
-    describe_primitive<f64::abi_intersect<f64::quadric_intersect>>(
+    describe_primitive<PRISM_SHARED_INTERSECT(quadric_intersect)>(
         "quadric", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(QuadricRecord), validate, pack, bounds,
         f64::abi_surface<f64::quadric_surface>, kPluginGlsl, "quadric", refine_quadric_record);
 

@@ -63,7 +63,7 @@ void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
   store3(p, hit->data);
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::ring_intersect>>(
+const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(ring_intersect)>(
     "ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(RingRecord), validate, pack, bounds,
     f64::abi_surface<f64::ring_surface>, kPluginGlsl, "ring", refine);
 

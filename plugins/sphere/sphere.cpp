@@ -45,7 +45,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   polish_hit(*ray, *hit, [r](const Vec3x& p) { return ImplicitSample{dot(p, p) - r * r, 2 * p}; });
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::sphere_intersect>>(
+const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(sphere_intersect)>(
     "sphere", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(SphereRecord), validate_nothing, pack, bounds,
     f64::abi_surface<f64::sphere_surface>, kPluginGlsl, "sphere", refine);
 

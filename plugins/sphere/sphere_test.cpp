@@ -258,4 +258,35 @@ TEST(SphereTest, RefinePolishesAGrazingHitForTheLongDoubleRay) {
   EXPECT_LT(rel_err(s.refine({0, c + 0x1p-58L, -10}, {0, 0, 1}, *hit).t, 9.999999831433186728526251), 1e-13);
 }
 
+
+// The float entry (ABI 4): the ray rounded to float, the float instantiation
+// of the same source. Hand-derived: float spacing between 2^26 and 2^27 is 8.
+std::optional<double> float_entry_t(const Shape& s, const dvec3& o, const dvec3& d, double tmin, double tmax) {
+  PrismRay ray{{o.x, o.y, o.z}, {d.x, d.y, d.z}};
+  PrismHit hit{};
+  if (!s.desc().intersect_float(s.record(), &ray, tmin, tmax, &hit)) return std::nullopt;
+  return hit.t;
+}
+
+TEST(SphereTest, FloatEntryComputesInFloat) {
+  const Shape s = sphere(1.0);
+  ASSERT_NE(s.desc().intersect_float, s.desc().intersect);
+  // Every step exact in float: foot at t = 5, disc = 1, t = 5 - 1.
+  EXPECT_EQ(float_entry_t(s, {0, 0, -5}, {0, 0, 1}, 0.0, kInf), 4.0);
+  // -100000000.5 rounds to -1e8 in float (a multiple of 8): foot at 1e8,
+  // t = 1e8 - 1 = 99999999, which rounds to 1e8. Double keeps the half.
+  EXPECT_EQ(float_entry_t(s, {0, 0, -100000000.5}, {0, 0, 1}, 0.0, kInf), 100000000.0);
+  EXPECT_EQ(s.intersect({0, 0, -100000000.5}, {0, 0, 1})->t, 99999999.5);
+}
+
+TEST(SphereTest, FloatEntryKeepsTheDoubleBounds) {
+  const Shape s = sphere(1.0);
+  // tmax just below 4 rounds down to the float below 4: the hit at 4 is out.
+  EXPECT_EQ(float_entry_t(s, {0, 0, -5}, {0, 0, 1}, 0.0, 3.9999999), std::nullopt);
+  // tmin just below 4 rounds up to 4 itself, so (tmin, tmax] in float lies
+  // inside the double one: the far root, 6, is the answer.
+  EXPECT_EQ(float_entry_t(s, {0, 0, -5}, {0, 0, 1}, 3.9999999, kInf), 6.0);
+  EXPECT_EQ(float_entry_t(s, {0, 0, -5}, {0, 0, 1}, 0.0, 4.0000001), 4.0);
+}
+
 }  // namespace

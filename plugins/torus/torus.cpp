@@ -70,7 +70,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   if (polish_hit(*ray, *hit, tube_distance, &p)) store3(p, hit->data);
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<f64::abi_intersect<f64::torus_intersect>>(
+const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(torus_intersect)>(
     "torus", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(TorusRecord), validate, pack, bounds,
     f64::abi_surface<f64::torus_surface>, kPluginGlsl, "torus", refine);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "cli_harness.hpp"
+#include "prism/registry.hpp"
 
 namespace prism::cli_test {
 namespace {
@@ -16,7 +17,7 @@ class PluginCheck : public CliTest {};
 TEST_F(PluginCheck, PrintsTheDescriptorAndPassesOnEmbree) {
   RunResult r = run({"plugin", "check", built_plugin("torus").string(), "-b", "embree"});
   ASSERT_TRUE(ExitedWith(r, 0));
-  for (const char* part : {"torus 1.0.0 (ABI 3)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
+  for (const char* part : {"torus 1.0.0 (ABI 4)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
                            "major_radius", "minor_radius", "required", "embree (double): ids agree on 100.000 %",
                            "PASS"})
     EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
@@ -32,7 +33,32 @@ TEST_P(PacketEntries, AgreeWithTheScalarIntersectorBitForBit) {
   RunResult r = run({"plugin", "check", built_plugin(GetParam()).string(), "-b", "reference", "--rays", "600"});
   ASSERT_TRUE(ExitedWith(r, 0)) << r.out;
   EXPECT_NE(r.out.find("packet entries: agree with intersect bit for bit"), std::string::npos) << r.out;
+  // The same run measures the float entry: within the float caps, or the
+  // double one standing in for a plugin without a float instantiation.
+  EXPECT_TRUE(contains_any(r.out, "float entry: within the float caps|float entry: the double intersector stands in"))
+      << r.out;
 }
+
+// Every plugin built carries the ABI 4 float entry, and one written in the
+// shared dialect (its GLSL is its C++ source) has a float instantiation of
+// its own there.
+class FloatEntry : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(FloatEntry, IsPresentInTheDescriptor) {
+  std::string error;
+  auto plugin = load_primitive_plugin(built_plugin(GetParam()), error);
+  ASSERT_TRUE(plugin) << error;
+  const PrismPrimitiveDesc& d = plugin->desc();
+  EXPECT_EQ(d.abi_version, 4u);
+  ASSERT_NE(d.intersect_float, nullptr);
+  const bool shared_dialect = d.glsl_source && std::string(d.glsl_source).find("OUT(PrismHit)") != std::string::npos;
+  if (shared_dialect) {
+    EXPECT_NE(d.intersect_float, d.intersect);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryPlugin, FloatEntry, ::testing::ValuesIn(primitives_built()),
+                         [](const auto& info) { return info.param; });
 
 INSTANTIATE_TEST_SUITE_P(EveryPlugin, PacketEntries, ::testing::ValuesIn(primitives_built()),
                          [](const auto& info) { return info.param; });

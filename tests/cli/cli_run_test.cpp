@@ -280,6 +280,61 @@ TEST_F(Trace, EmptyRayFileGivesEmptyOutput) {
   EXPECT_EQ(read_file(path("out.csv")), "");
 }
 
+// --precision float on the reference backend runs each plugin's float entry.
+// A unit sphere seen from z = -100000000.5: float rounds that origin to -1e8
+// (a multiple of 8, the float spacing there), and t = 1e8 - 1 = 99999999 to
+// 1e8; double keeps the half. From z = -5 both give 4 exactly.
+TEST_F(CliTest, PrecisionFloatOnReferenceIntersectsInFloat) {
+  SceneText s;
+  s.objects = R"([{"type": "sphere", "radius": 1}])";
+  s.lights = "[]";
+  const fs::path scene = write("sphere.json", s.text());
+  const fs::path rays = write("rays.csv", "0,0,-5,0,0,1\n0,0,-100000000.5,0,0,1\n");
+  for (const std::string precision : {"float", "double"}) {
+    SCOPED_TRACE(precision);
+    const fs::path out = path(precision + ".csv"), stats = path(precision + ".json");
+    RunResult r = run({"trace", scene.string(), "-b", "reference", "--rays", rays.string(), "-o", out.string(),
+                       "--digits", "17", "--precision", precision, "--stats", stats.string()});
+    ASSERT_TRUE(ExitedWith(r, 0));
+    const auto lines = lines_of(read_file(out));
+    ASSERT_EQ(lines.size(), 2u);
+    EXPECT_EQ(fields_of(lines[0])[0], "4");
+    EXPECT_EQ(fields_of(lines[1])[0], precision == "float" ? "100000000" : "99999999.5");
+    EXPECT_EQ(nlohmann::json::parse(read_file(stats))["info"]["precision"], precision);
+  }
+}
+
+TEST_F(CliTest, PrecisionFloatOnADoubleOnlyBackendExitsTwo) {
+  const auto built = backends_built();
+  if (std::find(built.begin(), built.end(), "embree") == built.end()) GTEST_SKIP() << "embree is not built";
+  const fs::path scene = write("scene.json", SceneText{}.text());
+  const fs::path rays = write("rays.csv", "0,0,-5,0,0,1\n");
+  RunResult r = run({"trace", scene.string(), "-b", "embree", "--rays", rays.string(), "-o", path("out.csv").string(),
+                     "--precision", "float"});
+  EXPECT_TRUE(ExitedWith(r, 2));
+  EXPECT_TRUE(StderrHas(r, {"--precision float", "embree", "computes in double only"}));
+  EXPECT_FALSE(fs::exists(path("out.csv")));
+}
+
+// A value that is not auto, float or double: exit 2 naming the flag, on
+// every command that takes it.
+TEST_F(CliTest, PrecisionBogusExitsTwoOnEveryCommand) {
+  const fs::path scene = write("scene.json", SceneText{}.text());
+  const fs::path rays = write("rays.csv", "0,0,-5,0,0,1\n");
+  const std::vector<std::vector<std::string>> commands = {
+      {"trace", scene.string(), "--rays", rays.string(), "-o", path("out.csv").string()},
+      {"render", scene.string(), "-o", path("out.png").string()},
+      {"bench", scene.string(), "--frames", "1", "--warmup", "1"},
+      {"conform", scene.string(), "-b", "reference"}};
+  for (std::vector<std::string> args : commands) {
+    SCOPED_TRACE(args[0]);
+    args.insert(args.end(), {"--precision", "bogus"});
+    RunResult r = run(args);
+    EXPECT_TRUE(ExitedWith(r, 2));
+    EXPECT_TRUE(StderrHas(r, {"--precision", "bogus"}));
+  }
+}
+
 // A bad line: exit 2, the message names the file and the line number, and
 // no output is written.
 class BadRays : public Trace, public ::testing::WithParamInterface<std::pair<std::string, std::string>> {};

@@ -40,6 +40,9 @@ struct Family {
   std::string primitive;  // "torus"
   std::string description;
   std::vector<Case> cases;  // one in quick mode, the sweep in full mode
+  // Float cannot do it (docs/numerics.md, "What float cannot do"): its
+  // float rows are measured and reported, not held to the float caps.
+  bool double_only = false;
 };
 
 enum class Mode { quick, full };

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 
 namespace prism::stability {
 
@@ -318,8 +319,10 @@ Percentiles percentiles(std::vector<double> values) {
 }
 
 Summary summarize(const std::string& family, const std::string& param, const std::string& primitive,
-                  const std::string& backend, const std::string& precision, const Tally& tally) {
+                  const std::string& backend, const std::string& precision, const Tally& tally,
+                  bool double_only) {
   Summary s;
+  s.double_only = double_only;
   s.family = family;
   s.param = param;
   s.primitive = primitive;
@@ -378,6 +381,12 @@ void apply_caps(Summary& s) {
                   caps.point_p99, s.point_distance.max);
     s.failures.push_back(text);
   }
+  if (s.double_only && s.precision == "float") s.beyond_float = std::exchange(s.failures, {});
+}
+
+const char* verdict_word(const Summary& s) {
+  if (!s.failures.empty()) return "FAIL";
+  return s.beyond_float.empty() ? "pass" : "double-only";
 }
 
 }  // namespace prism::stability

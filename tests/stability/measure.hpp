@@ -87,12 +87,20 @@ struct Summary {
   int64_t false_miss = 0, false_hit = 0, wrong_object = 0, ambiguous_disagree = 0;
   Percentiles t_rel, normal_angle, point_distance, t_floor, normal_floor;
   double render_ms = 0, ns_per_ray = 0;
-  std::vector<std::string> failures;  // caps that fail; empty: pass
+  // The family is one float cannot do (Family::double_only): a float row's
+  // caps are measured and reported (beyond_float), never failed.
+  bool double_only = false;
+  std::vector<std::string> failures;      // caps that fail; empty: pass
+  std::vector<std::string> beyond_float;  // the caps a double-only family's float row exceeds
   std::vector<Example> worst;
 };
 
+// "pass", "FAIL", or "double-only" (a float row of a double-only family over its caps).
+const char* verdict_word(const Summary& s);
+
 Summary summarize(const std::string& family, const std::string& param, const std::string& primitive,
-                  const std::string& backend, const std::string& precision, const Tally& tally);
+                  const std::string& backend, const std::string& precision, const Tally& tally,
+                  bool double_only = false);
 
 // The caps (they may be tightened, never loosened):
 // - double-precision backends (`--stats` info.precision == "double": reference,
@@ -101,8 +109,11 @@ Summary summarize(const std::string& family, const std::string& param, const std
 //   polished in long double), and also normal angle p99 <= 1e-6 rad (the
 //   cone apex's input-rounding floor is 1.4e-5) and reported point off the
 //   surface p99 <= 1e-9 (relative to the object's size);
-// - every other backend (the GPU ones: "double geometry, float32 shading"):
+// - every other backend (the GPU ones: "double geometry, float32 shading";
+//   "float", `--precision float`: the plugins' float instantiations):
 //   misclassification <= 1 % of the family's rays, relative t error p99 <= 1e-4.
+//   A "float" row of a double-only family is reported against these caps,
+//   not failed (docs/numerics.md, "What float cannot do").
 struct Caps {
   double misclassified_fraction;  // 0 for double
   double t_rel_p99;

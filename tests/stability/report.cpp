@@ -68,6 +68,16 @@ nlohmann::ordered_json percentiles_json(const Percentiles& p) {
   return j;
 }
 
+// The table's precision: what the backend's --stats said ("double",
+// "float", ...), cut to the column; "?" when it said nothing.
+std::string precision_column(const Summary& s) {
+  if (s.precision.empty()) return "?";
+  return s.precision.size() <= 9 ? s.precision : s.precision.substr(0, 8) + "~";
+}
+
+// One series of the chart: a backend in one precision.
+std::string series(const Summary& s) { return s.precision.empty() ? s.backend : s.backend + " (" + s.precision + ")"; }
+
 }  // namespace
 
 std::string format_error(const Percentiles& p, double Percentiles::*field) {
@@ -76,18 +86,18 @@ std::string format_error(const Percentiles& p, double Percentiles::*field) {
 }
 
 void print_table(std::FILE* out, const std::vector<Summary>& rows) {
-  std::fprintf(out, "%-26s %-16s %-9s %5s %5s %4s %5s  %-9s %-9s %-9s %-9s  %-9s %-9s  %-9s %8s  %s\n", "family",
-               "param", "backend", "rays", "hits", "amb", "miscl", "t p50", "t p99", "t max", "t floor", "n p99",
+  std::fprintf(out, "%-26s %-16s %-9s %-9s %5s %5s %4s %5s  %-9s %-9s %-9s %-9s  %-9s %-9s  %-9s %8s  %s\n",
+               "family", "param", "backend", "precision", "rays", "hits", "amb", "miscl", "t p50", "t p99", "t max", "t floor", "n p99",
                "n max", "pt p99", "ns/ray", "verdict");
   for (const Summary& s : rows) {
     std::fprintf(
-        out, "%-26s %-16s %-9s %5lld %5lld %4lld %5lld  %-9s %-9s %-9s %-9s  %-9s %-9s  %-9s %8.0f  %s\n",
-        s.family.c_str(), s.param.c_str(), s.backend.c_str(), (long long)s.rays, (long long)s.hits,
+        out, "%-26s %-16s %-9s %-9s %5lld %5lld %4lld %5lld  %-9s %-9s %-9s %-9s  %-9s %-9s  %-9s %8.0f  %s\n",
+        s.family.c_str(), s.param.c_str(), s.backend.c_str(), precision_column(s).c_str(), (long long)s.rays, (long long)s.hits,
         (long long)s.ambiguous, (long long)s.misclassified, format_error(s.t_rel, &Percentiles::p50).c_str(),
         format_error(s.t_rel, &Percentiles::p99).c_str(), format_error(s.t_rel, &Percentiles::max).c_str(),
         format_error(s.t_floor, &Percentiles::p99).c_str(), format_error(s.normal_angle, &Percentiles::p99).c_str(),
         format_error(s.normal_angle, &Percentiles::max).c_str(),
-        format_error(s.point_distance, &Percentiles::p99).c_str(), s.ns_per_ray, s.failures.empty() ? "pass" : "FAIL");
+        format_error(s.point_distance, &Percentiles::p99).c_str(), s.ns_per_ray, verdict_word(s));
   }
 }
 
@@ -96,7 +106,7 @@ void write_csv(const fs::path& file, const std::vector<Summary>& rows) {
       "family,param,primitive,backend,precision,rays,hits,ambiguous,misclassified,false_miss,false_hit,wrong_object,"
       "ambiguous_disagree,t_rel_n,t_rel_p50,t_rel_p99,t_rel_max,t_floor_p50,t_floor_p99,t_floor_max,normal_n,"
       "normal_p50,normal_p99,normal_max,normal_floor_p99,point_n,point_p50,point_p99,point_max,render_ms,ns_per_ray,"
-      "verdict,failures\n";
+      "verdict,failures,double_only,beyond_float\n";
   auto pct = [](const Percentiles& p) {
     if (p.n == 0) return std::string(",,");
     return g17(p.p50) + "," + g17(p.p99) + "," + g17(p.max);
@@ -104,6 +114,8 @@ void write_csv(const fs::path& file, const std::vector<Summary>& rows) {
   for (const Summary& s : rows) {
     std::string failures;
     for (const auto& f : s.failures) failures += (failures.empty() ? "" : "; ") + f;
+    std::string beyond;
+    for (const auto& f : s.beyond_float) beyond += (beyond.empty() ? "" : "; ") + f;
     text += csv_field(s.family) + "," + csv_field(s.param) + "," + s.primitive + "," + s.backend + "," +
             csv_field(s.precision) + "," + std::to_string(s.rays) + "," + std::to_string(s.hits) + "," +
             std::to_string(s.ambiguous) + "," + std::to_string(s.misclassified) + "," + std::to_string(s.false_miss) +
@@ -112,7 +124,8 @@ void write_csv(const fs::path& file, const std::vector<Summary>& rows) {
             pct(s.t_floor) + "," + std::to_string(s.normal_angle.n) + "," + pct(s.normal_angle) + "," +
             (s.normal_floor.n ? g17(s.normal_floor.p99) : "") + "," + std::to_string(s.point_distance.n) + "," +
             pct(s.point_distance) + "," + g17(s.render_ms) + "," + g17(s.ns_per_ray) + "," +
-            (s.failures.empty() ? "pass" : "fail") + "," + csv_field(failures) + "\n";
+            (s.failures.empty() ? "pass" : "fail") + "," + csv_field(failures) + "," +
+            (s.double_only ? "yes" : "no") + "," + csv_field(beyond) + "\n";
   }
   write_text(file, text);
 }
@@ -141,6 +154,8 @@ nlohmann::ordered_json summary_json(const Summary& s) {
   j["ns_per_ray"] = s.ns_per_ray;
   j["verdict"] = s.failures.empty() ? "pass" : "fail";
   j["failures"] = s.failures;
+  j["double_only"] = s.double_only;
+  j["beyond_float"] = s.beyond_float;
   // The worst rays, for a failing row only (they are what a reader needs to
   // reproduce the failure; a passing row's would only bloat the file).
   nlohmann::ordered_json worst = nlohmann::ordered_json::array();
@@ -179,7 +194,7 @@ void write_svg(const fs::path& file, const std::vector<Summary>& rows, const std
   std::vector<std::string> backends;
   double xmin = 1e300, xmax = 0, ymax = 1e-3;
   for (const Summary& s : rows) {
-    if (std::find(backends.begin(), backends.end(), s.backend) == backends.end()) backends.push_back(s.backend);
+    if (std::find(backends.begin(), backends.end(), series(s)) == backends.end()) backends.push_back(series(s));
     if (s.t_rel.n == 0 || !(s.ns_per_ray > 0)) continue;
     xmin = std::min(xmin, s.ns_per_ray);
     xmax = std::max(xmax, s.ns_per_ray);
@@ -252,14 +267,14 @@ void write_svg(const fs::path& file, const std::vector<Summary>& rows, const std
   // Points: one per row; a failing row gets a black ring.
   for (const Summary& s : rows) {
     if (s.t_rel.n == 0 || !(s.ns_per_ray > 0)) continue;
-    const size_t b = size_t(std::find(backends.begin(), backends.end(), s.backend) - backends.begin());
+    const size_t b = size_t(std::find(backends.begin(), backends.end(), series(s)) - backends.begin());
     const double x = X(s.ns_per_ray), y = Y(std::isfinite(s.t_rel.p99) ? s.t_rel.p99 : 1e300);
     std::snprintf(buf, sizeof buf,
                   "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"5\" fill=\"%s\" fill-opacity=\"0.75\" stroke=\"%s\" "
                   "stroke-width=\"%s\"><title>%s %s on %s: p99 %s, %.0f ns/ray%s</title></circle>\n",
                   x, y, palette[b % 7], s.failures.empty() ? "none" : "black", s.failures.empty() ? "0" : "1.5",
-                  xml(s.family).c_str(), xml(s.param).c_str(), xml(s.backend).c_str(), g3(s.t_rel.p99).c_str(),
-                  s.ns_per_ray, s.failures.empty() ? "" : " (FAIL)");
+                  xml(s.family).c_str(), xml(s.param).c_str(), xml(series(s)).c_str(), g3(s.t_rel.p99).c_str(),
+                  s.ns_per_ray, s.failures.empty() ? (s.beyond_float.empty() ? "" : " (double-only)") : " (FAIL)");
     svg += buf;
   }
   // Legend.

@@ -3,11 +3,14 @@
 //   <build>/bin/prism trace SCENE -b BACKEND --rays R.csv -o OUT.csv --digits 17 --stats S.json
 // and compares each answer with the quad-precision oracle (exact.hpp):
 // misclassification outside the ambiguity band, relative t error, normal
-// angle, reported point off the surface, and ns per ray. Exit status 1 when a
-// cap (measure.hpp) fails or a required backend cannot run, else 0.
+// angle, reported point off the surface, and ns per ray (the trace phase:
+// `--stats` ms.render over the rays). Every backend that accepts
+// `--precision float` (tried once per backend) runs the families a second
+// time with it: its float rows. Exit status 1 when a cap (measure.hpp) fails
+// or a required backend cannot run, else 0.
 //
 //   prism_stability [--quick | --full] [--primitive T[,T...]] [--family SUBSTRING]
-//                   [-b BACKEND[,BACKEND...]] [--out DIR] [--prism PATH] [--keep] [--list]
+//                   [-b BACKEND[,BACKEND...]] [--precision auto,float] [--out DIR] [--prism PATH] [--keep] [--list]
 #include <unistd.h>
 
 #include <algorithm>
@@ -51,6 +54,7 @@ std::vector<std::string> split(const std::string& list) {
 struct Options {
   Mode mode = Mode::quick;
   std::vector<std::string> primitives, backends;
+  std::vector<std::string> precisions = {"auto", "float"};  // `prism trace --precision` of each pass
   std::string family_filter;
   fs::path out_dir, prism;
   bool keep = false, list = false;
@@ -59,13 +63,16 @@ struct Options {
 void usage(std::FILE* out) {
   std::fprintf(out,
                "usage: prism_stability [--quick | --full] [--primitive T[,T...]] [--family SUBSTRING]\n"
-               "                       [-b BACKEND[,BACKEND...]] [--out DIR] [--prism PATH] [--keep] [--list]\n"
+               "                       [-b BACKEND[,BACKEND...]] [--precision auto,float] [--out DIR]\n"
+               "                       [--prism PATH] [--keep] [--list]\n"
                "  --quick       one parameter value per family, 48 rays (the default)\n"
                "  --full        the whole parameter sweep, 256 rays per value\n"
                "  --primitive   only these primitive types\n"
                "  --family      only families whose name contains SUBSTRING\n"
                "  -b            these backends (default: every backend `prism list` says is usable);\n"
                "                PRISM_REQUIRE_BACKENDS names backends that must run\n"
+               "  --precision   the passes: auto (each backend's own precision) and float (every\n"
+               "                backend that accepts `prism trace --precision float`); default both\n"
                "  --out DIR     write DIR/stability.csv, stability.json, stability.svg\n"
                "  --prism PATH  the prism binary (default: <build>/bin/prism)\n"
                "  --keep        keep the scratch folder with every scene, ray file and answer\n"
@@ -91,7 +98,11 @@ Options parse_options(int argc, char** argv) {
       o.family_filter = value();
     else if (a == "-b" || a == "--backend")
       for (auto& b : split(value())) o.backends.push_back(b);
-    else if (a == "--out")
+    else if (a == "--precision") {
+      o.precisions = split(value());
+      for (const auto& p : o.precisions)
+        if (p != "auto" && p != "float") throw std::invalid_argument("--precision: '" + p + "' is not auto or float");
+    } else if (a == "--out")
       o.out_dir = value();
     else if (a == "--prism")
       o.prism = value();
@@ -140,9 +151,44 @@ std::map<std::string, std::string> list_backends(const fs::path& prism, const fs
   return found;
 }
 
+// One pass of one backend: `flag` is its `--precision` ("auto": none given),
+// `precision` what its --stats then says it computed in.
 struct BackendRun {
-  std::string name, precision;
+  std::string name, flag, precision;
+  std::string key() const { return flag == "auto" ? name : name + " --precision " + flag; }
+  std::vector<std::string> precision_args() const {
+    return flag == "auto" ? std::vector<std::string>{} : std::vector<std::string>{"--precision", flag};
+  }
 };
+
+// Whether `backend` accepts `prism trace --precision <flag>`: one ray on a
+// case's scene (a refusal is exit status 2, before anything is prepared).
+bool accepts_precision(const fs::path& prism, const std::string& backend, const std::string& flag, const Case& c,
+                       const fs::path& scratch) {
+  const fs::path dir = scratch / ("probe_" + backend + "_" + flag);
+  fs::create_directories(dir);
+  write_text(dir / "scene.json", scene_json(c.objects).dump(2) + "\n");
+  write_text(dir / "rays.csv", rays_csv({c.rays.front()}));
+  const ProcessResult r = run_process({prism.string(), "trace", (dir / "scene.json").string(), "-b", backend, "--rays",
+                                       (dir / "rays.csv").string(), "-o", (dir / "out.csv").string(), "--precision",
+                                       flag},
+                                      dir);
+  return r.exited && r.status == 0;
+}
+
+// The float rows of double-only families over the float caps: what float
+// cannot do, reported and not failed.
+void print_beyond_float(const std::vector<Summary>& rows) {
+  bool first = true;
+  for (const Summary& s : rows) {
+    if (s.beyond_float.empty()) continue;
+    if (first) std::printf("\nDouble-only families in float (reported, not failed):\n");
+    first = false;
+    std::printf("  %s [%s] on %s (%s):", s.family.c_str(), s.param.c_str(), s.backend.c_str(), s.precision.c_str());
+    for (const auto& f : s.beyond_float) std::printf(" %s.", f.c_str());
+    std::printf("\n");
+  }
+}
 
 }  // namespace
 
@@ -218,7 +264,14 @@ int run(int argc, char** argv) {
     auto it = found.find(name);
     const std::string why = it == found.end() ? "not found by `prism list`" : it->second;
     if (why.empty()) {
-      backends.push_back({name, ""});
+      for (const std::string& flag : opt.precisions) {
+        if (flag != "auto" && !accepts_precision(opt.prism, name, flag, families.front().cases.front(), scratch)) {
+          std::printf("backend %s: no --precision %s pass (it computes in its own precision only)\n", name.c_str(),
+                      flag.c_str());
+          continue;
+        }
+        backends.push_back({name, flag, ""});
+      }
       continue;
     }
     skipped.push_back({name, why, is_required(name)});
@@ -238,7 +291,7 @@ int run(int argc, char** argv) {
   }
   std::fprintf(stderr, "prism_stability: %s mode, %zu families, %zu cases, %zu rays, backends:",
                opt.mode == Mode::quick ? "quick" : "full", families.size(), cases, rays);
-  for (const auto& b : backends) std::fprintf(stderr, " %s", b.name.c_str());
+  for (const auto& b : backends) std::fprintf(stderr, " [%s]", b.key().c_str());
   std::fprintf(stderr, "\n");
 
   double oracle_s = 0, trace_s = 0;
@@ -268,13 +321,16 @@ int run(int argc, char** argv) {
       oracle_s += seconds_since(oracle_start);
 
       for (BackendRun& b : backends) {
-        if (family_error.count(b.name)) continue;
-        const fs::path out = dir / (b.name + ".csv"), stats = dir / (b.name + ".stats.json");
+        if (family_error.count(b.key())) continue;
+        const std::string file_stem = b.name + "." + b.flag;
+        const fs::path out = dir / (file_stem + ".csv"), stats = dir / (file_stem + ".stats.json");
         const auto trace_start = Clock::now();
-        const ProcessResult r =
-            run_process({opt.prism.string(), "trace", scene.string(), "-b", b.name, "--rays", rays_file.string(), "-o",
-                         out.string(), "--digits", "17", "--stats", stats.string()},
-                        dir);
+        std::vector<std::string> command = {opt.prism.string(), "trace",         scene.string(), "-b",
+                                            b.name,             "--rays",        rays_file.string(), "-o",
+                                            out.string(),       "--digits",      "17",           "--stats",
+                                            stats.string()};
+        for (const std::string& arg : b.precision_args()) command.push_back(arg);
+        const ProcessResult r = run_process(command, dir);
         trace_s += seconds_since(trace_start);
         Tally tally;
         try {
@@ -285,11 +341,12 @@ int run(int argc, char** argv) {
           tally.render_ms = stats_json.at("ms").at("render").get<double>();
           compare(family.name, c, oracle, parse_answers(read_text(out)), b.name, tally);
         } catch (const std::exception& e) {
-          family_error[b.name] = c.param + ": " + e.what() + "\n    $ " + r.command;
+          family_error[b.key()] = c.param + ": " + e.what() + "\n    $ " + r.command;
           continue;
         }
-        sweep.push_back(summarize(family.name, c.param, family.primitive, b.name, b.precision, tally));
-        Tally& ft = family_tally[b.name];
+        sweep.push_back(
+            summarize(family.name, c.param, family.primitive, b.name, b.precision, tally, family.double_only));
+        Tally& ft = family_tally[b.key()];
         ft.rays += tally.rays;
         ft.hits += tally.hits;
         ft.ambiguous += tally.ambiguous;
@@ -318,16 +375,16 @@ int run(int argc, char** argv) {
     }
     std::string line;
     for (const BackendRun& b : backends) {
-      if (auto e = family_error.find(b.name); e != family_error.end()) {
-        errors.push_back(family.name + " on " + b.name + ": " + e->second);
+      if (auto e = family_error.find(b.key()); e != family_error.end()) {
+        errors.push_back(family.name + " on " + b.key() + ": " + e->second);
         status = 1;
         continue;
       }
-      if (!family_tally.count(b.name)) continue;
+      if (!family_tally.count(b.key())) continue;
       Summary s = summarize(family.name, opt.mode == Mode::quick ? family.cases[0].param : "all", family.primitive,
-                            b.name, b.precision, family_tally[b.name]);
+                            b.name, b.precision, family_tally[b.key()], family.double_only);
       if (!s.failures.empty()) status = 1;
-      line += " " + b.name + (s.failures.empty() ? " pass" : " FAIL");
+      line += " " + b.name + (b.flag == "auto" ? "" : "/" + b.flag) + " " + verdict_word(s);
       rows.push_back(std::move(s));
     }
     std::fprintf(stderr, "  [%zu/%zu] %-26s %.1f s:%s\n", fi + 1, families.size(), family.name.c_str(),
@@ -373,6 +430,7 @@ int run(int argc, char** argv) {
                   e.backend_answer.c_str());
     }
   }
+  print_beyond_float(detail);
   for (const auto& e : errors) std::printf("\nERROR %s\n", e.c_str());
 
   if (!opt.out_dir.empty()) {
@@ -389,6 +447,7 @@ int run(int argc, char** argv) {
       meta["backends"] = nlohmann::ordered_json::array();
       for (const auto& b : backends)
         meta["backends"].push_back({{"name", b.name},
+                                    {"precision_flag", b.flag},
                                     {"precision", b.precision},
                                     {"caps", [&] {
                                        const Caps c = caps_for(b.precision);

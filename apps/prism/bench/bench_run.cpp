@@ -158,6 +158,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
   }
   auto start = std::chrono::steady_clock::now();
   std::unique_ptr<Backend> backend = start_backend(*plugin, name);
+  cli::set_backend_precision(*backend, name, options.precision);
   result.start_ms = ms_since(start);
   result.memory.loaded_bytes = resident_bytes();
   result.memory.frame_bytes = frame_bytes(options.settings);
@@ -181,6 +182,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
   if (auto it = before.counters.find(counter::kSceneBytes); it != before.counters.end())
     result.memory.scene_bytes = int64_t(it->second);
   if (auto it = before.info.find(info_key::kDevice); it != before.info.end()) result.device = it->second;
+  if (auto it = before.info.find(info_key::kPrecision); it != before.info.end()) result.precision = it->second;
 
   reset_peak_resident();
   Image last;
@@ -202,6 +204,7 @@ Result run_backend(Registry& registry, const Scene& scene, const std::string& na
   if (options.check && options.frames > 0) {
     // What `prism render` does for that camera: a fresh backend, prepared once, one render.
     std::unique_ptr<Backend> fresh = start_backend(*plugin, name);
+    fresh->set_precision(options.precision);
     fresh->prepare(scene);
     Image expected;
     timed_frame(*fresh, options.settings, cameras(options.frames - 1), &expected);

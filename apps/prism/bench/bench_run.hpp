@@ -25,6 +25,7 @@ struct Options {
   double orbit_degrees = 0.25;  // camera yaw about its target per frame
   bool check = true;          // compare the last frame with a fresh render of its camera
   bool profile = false;       // time a frame's phases (RenderSettings::profile) and the image write
+  Precision precision = Precision::automatic;  // --precision, set on every backend started
 };
 
 struct Memory {
@@ -46,6 +47,7 @@ struct Result {
   std::string backend;
   std::string skipped;  // why it did not run; empty when it ran
   std::string device;   // stats info.device, or the probe's description
+  std::string precision;  // stats info.precision: what the intersectors computed in (--precision)
   double start_ms = 0, build_ms = 0, compile_ms = 0, first_frame_ms = 0;
   std::vector<double> frame_ms;                   // the measured frames
   // Processor time a measured frame took, all threads together (what a

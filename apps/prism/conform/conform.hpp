@@ -107,6 +107,7 @@ struct Options {
   std::optional<std::pair<int, int>> size;    // --size: width and height in place of the scenes' own
   std::filesystem::path references;           // folder of the stored high-spp <scene>.exr images
   Caps caps;
+  Precision precision = Precision::automatic; // --precision of the backends tested (the reference: double)
 };
 
 // One backend over the whole run, for the top of the report.

@@ -151,6 +151,19 @@ class SceneRun {
     return rgb_of(stored);
   }
 
+  // A backend's refusal of --precision, told apart from its failures.
+  struct PrecisionRefused : InputError {
+    using InputError::InputError;
+  };
+
+  void set_precision(Backend& backend, const std::string& name) const {
+    try {
+      cli::set_backend_precision(backend, name, options_.precision);
+    } catch (const InputError& e) {
+      throw PrecisionRefused(e.what());
+    }
+  }
+
   bool required(const std::string& name) const {
     return std::find(options_.required.begin(), options_.required.end(), name) != options_.required.end();
   }
@@ -168,6 +181,7 @@ class SceneRun {
     }
     try {
       const std::unique_ptr<Backend> backend = start_backend(*subject.plugin, subject.name);
+      set_precision(*backend, subject.name);
       const cli::PhaseTimer prepare_timer;
       backend->prepare(scene);
       b.prepare_ms = prepare_timer.total();
@@ -182,6 +196,8 @@ class SceneRun {
       if (truth) b.sweep = sweep(*backend, scene, *truth, options_.sweep_max_spp);
     } catch (const Cancelled&) {
       throw;  // an interrupt ends the whole run; it is not this backend's failure
+    } catch (const PrecisionRefused&) {
+      throw;  // a flag the backend cannot honour is bad input (exit 2), not a failed scene
     } catch (const std::exception& e) {
       b.status = "error";
       b.reason = e.what();

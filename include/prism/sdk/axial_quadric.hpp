@@ -47,13 +47,14 @@ inline void polish_axial_quadric_hit(long double b, long double j, const PrismRa
 }
 
 // The descriptor of a plugin whose `pack` calls pack_axial_quadric, with
-// the C ABI entry points of its one source (prism/sdk/shared_plugin.hpp),
-// which calls prism_quadric_intersect and prism_axial_quadric_surface.
-template <IntersectFn Intersect, SurfaceFn Surface, size_t FieldCount>
+// the C ABI entry points of its one source (prism/sdk/shared_plugin.hpp:
+// PRISM_SHARED_INTERSECT gives the first two), which calls
+// prism_quadric_intersect and prism_axial_quadric_surface.
+template <IntersectFn Intersect, IntersectFn IntersectFloat, SurfaceFn Surface, size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_axial_quadric(const char* type_name, const PrismField (&fields)[FieldCount],
                                                     void (*pack)(const double*, void*), RefineFn refine,
                                                     const char* glsl_source, const char* glsl_prefix) {
-  return describe_primitive<Intersect>(type_name, PRISM_PRIMITIVE_TRANSFORMABLE, fields, sizeof(AxialQuadricRecord),
+  return describe_primitive<Intersect, IntersectFloat>(type_name, PRISM_PRIMITIVE_TRANSFORMABLE, fields, sizeof(AxialQuadricRecord),
                                        validate_nothing, pack, axial_quadric_bounds, Surface, glsl_source,
                                        glsl_prefix, refine);
 }

@@ -120,7 +120,11 @@ uint32_t occluded_packet(const void* record, const PrismRayPacket* rays, uint32_
 // the batch and packet queries are loops over `Intersect`. `glsl_source` defines
 // `<glsl_prefix>_intersect` and `<glsl_prefix>_surface` (see primitive_abi.h);
 // `refine` polishes ill-conditioned hits (prism/sdk/refine.hpp).
-template <IntersectFn Intersect, size_t FieldCount>
+// `IntersectFloat` is the float32 entry (primitive_abi.h, version 4): a
+// plugin written in the shared dialect passes both entries with
+// PRISM_SHARED_INTERSECT (prism/sdk/shared_plugin.hpp); a hand-written one
+// has no float instantiation, and its double `Intersect` stands in.
+template <IntersectFn Intersect, IntersectFn IntersectFloat = Intersect, size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t flags,
                                                 const PrismField (&fields)[FieldCount], uint32_t record_size,
                                                 int (*validate)(const double*, PrismError*),
@@ -149,7 +153,8 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                             glsl_prefix,
                             refine,
                             intersect_packet<Intersect>,
-                            occluded_packet<Intersect>};
+                            occluded_packet<Intersect>,
+                            IntersectFloat};
 }
 
 // Fills a PrismSurface from local point, normal and uv.

@@ -1,10 +1,15 @@
 // A primitive plugin written once in the shared dialect
-// (prism/sdk/dialect.hpp): the C ABI entry points of its double
-// instantiation. A plugin's .cpp instantiates its `<type>.shared.glsl`
+// (prism/sdk/dialect.hpp): the C ABI entry points of its instantiations.
+// A plugin's .cpp instantiates its `<type>.shared.glsl`
 // (PRISM_SHARED_SOURCE + prism/sdk/instantiate.hpp) and hands
-//   f64::abi_intersect<f64::<type>_intersect>, f64::abi_surface<f64::<type>_surface>
-// to describe_primitive; the same text is its GLSL source (kPluginGlsl).
+//   PRISM_SHARED_INTERSECT(<type>_intersect), f64::abi_surface<f64::<type>_surface>
+// to describe_primitive: `intersect` from the double instantiation,
+// `intersect_float` from the float one; the same text is its GLSL source
+// (kPluginGlsl). The surface stays double (primitive_abi.h, version 4).
 #pragma once
+
+#include <cmath>
+#include <limits>
 
 #include "prism/primitive_abi.h"
 #include "prism/sdk/library.hpp"
@@ -56,3 +61,57 @@ void abi_surface(const void* record, const ::PrismRay* ray, const ::PrismHit* hi
 
 }  // namespace
 }  // namespace prism::sdk::f64
+
+namespace prism::sdk::f32 {
+namespace {
+
+// The nearest float to x no smaller (float_up) or no larger (float_down)
+// than x: the float bounds (tmin, tmax] then lie inside the double ones, so
+// every t the float instantiation accepts keeps the ABI's contract once
+// widened to double.
+inline float float_up(double x) {
+  const float f = float(x);
+  return double(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+inline float float_down(double x) {
+  const float f = float(x);
+  return double(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+// The local ray rounded to float, as a float kernel receives it after the
+// host has re-centred it in double.
+inline PrismRay ray_from_abi(const ::PrismRay* ray) {
+  PrismRay r;
+  r.origin = real3(::prism::sdk::load3(ray->origin));
+  r.dir = real3(::prism::sdk::load3(ray->dir));
+  return r;
+}
+
+inline void store_hit(const PrismHit& h, ::PrismHit* out) {
+  *out = ::PrismHit{};
+  out->t = double(h.t);
+  store3(glm::dvec3(h.data), out->data);
+  out->part = h.part;
+}
+
+using SharedIntersect = bool (*)(PrismRecord, PrismRay, real, real, PrismHit&);
+
+// The descriptor's `intersect_float`: `intersect`'s contract, computed by
+// the float instantiation.
+template <SharedIntersect Intersect>
+int abi_intersect_float(const void* record, const ::PrismRay* ray, double tmin, double tmax, ::PrismHit* hit) {
+  PrismHit h;
+  if (!Intersect(prism_record_at(record), ray_from_abi(ray), float_up(tmin), float_down(tmax), h)) return 0;
+  store_hit(h, hit);
+  return 1;
+}
+
+}  // namespace
+}  // namespace prism::sdk::f32
+
+// describe_primitive's two intersect entries (template arguments) for the
+// shared-dialect function `name` (e.g. sphere_intersect): its double and
+// float instantiations, so no plugin writes its float entry by hand.
+#define PRISM_SHARED_INTERSECT(name) \
+  ::prism::sdk::f64::abi_intersect<::prism::sdk::f64::name>, \
+      ::prism::sdk::f32::abi_intersect_float<::prism::sdk::f32::name>
