@@ -78,13 +78,14 @@ function(prism_define_unit_suite)
 endfunction()
 
 # Adds every subfolder of the calling folder that has a CMakeLists.txt, in
-# name order: adding a plugin, backend or test folder edits no list.
+# name order: adding a plugin, backend or test folder edits no list. The glob
+# is CONFIGURE_DEPENDS, so a plain `cmake --build` sees a new folder (its
+# CMakeLists.txt) and re-runs CMake by itself.
 function(prism_add_subfolders)
-  file(GLOB children LIST_DIRECTORIES true RELATIVE ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/*)
-  list(SORT children)
-  foreach(child ${children})
-    if(EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/${child}/CMakeLists.txt)
-      add_subdirectory(${child})
-    endif()
+  file(GLOB lists CONFIGURE_DEPENDS RELATIVE ${CMAKE_CURRENT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/*/CMakeLists.txt)
+  list(SORT lists)
+  foreach(list_file ${lists})
+    get_filename_component(child ${list_file} DIRECTORY)
+    add_subdirectory(${child})
   endforeach()
 endfunction()

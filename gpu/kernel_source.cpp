@@ -98,7 +98,7 @@ KernelSource generate_kernel(const PackedScene& scene, const KernelOptions& opti
   append_defines(out, features, options);
   out << options.api_glue << '\n';
   append_section(out, "core/glsl/prelude.glsl", core_module("prelude"));
-  append_section(out, "prism/sdk/shared/library.shared.glsl", core_module("library"));
+  append_section(out, "prism/sdk/modules/library.shared.glsl", core_module("library"));
   std::set<std::string> spliced;
   for (const PrismPrimitiveDesc* type : scene.types) {
     const sdk::RequiredModules required = sdk::required_modules(type->glsl_source);

@@ -51,7 +51,7 @@ std::string read_source_file(const std::string& path) {
 }
 
 TEST(SharedDialect, TheKernelCarriesTheTextTheCppInstantiates) {
-  const std::string library = read_source_file("core/include/prism/sdk/shared/library.shared.glsl");
+  const std::string library = read_source_file("include/prism/sdk/modules/library.shared.glsl");
   ASSERT_NE(library.find("prism_solve_quadratic"), std::string::npos);
   Registry registry;
   Scene scene = load_scene_from_string(R"({"prism": 1, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},

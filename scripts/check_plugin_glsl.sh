@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Compiles every primitive plugin's GPU source the way the kernel generator
 # assembles it: a header, core/glsl/prelude.glsl (the shared dialect's GLSL
-# side), the library prism/sdk/shared/library.shared.glsl, each core module
+# side), the library prism/sdk/modules/library.shared.glsl, each core module
 # the plugin asks for with `// prism:require <module>` (once; read by
 # prism-glsl-modules, the generator's own parser), the plugin's source, and a
 # main() that calls <type>_intersect and <type>_surface and stores their
@@ -28,7 +28,7 @@ set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 source "$root/scripts/plugin_folders.sh"
 glsl_dir="$root/core/glsl"
-shared_dir="$root/core/include/prism/sdk/shared"
+shared_dir="$root/include/prism/sdk/modules"
 modules_tool="${PRISM_GLSL_MODULES:-$root/build/bin/prism-glsl-modules}"
 
 if ! command -v glslangValidator >/dev/null; then

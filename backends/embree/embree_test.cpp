@@ -4,6 +4,9 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
+#include <string>
+#include <vector>
 
 #include "embree_device.hpp"
 #include "embree_query.hpp"
@@ -62,6 +65,18 @@ TEST(EmbreeQuery, MatchesBruteForceOnRandomMixedScenes) {
     }
   }
   EXPECT_GT(tally.hits, 6000);
+}
+
+// The random scenes draw every type whose cases module has random objects,
+// a new primitive's too (sdk.ninth_primitive runs this with the capsule).
+TEST(EmbreeQuery, RandomScenesHoldEveryAvailableType) {
+  REQUIRE_PRIMITIVE("sphere");
+  const auto types = available_types();
+  Rng rng(16);
+  const Scene scene = load(random_objects_json(rng, types, 40 * int(types.size())));
+  std::set<std::string> drawn;
+  for (const Object& object : scene.objects) drawn.insert(object.desc->type_name);
+  EXPECT_EQ(std::vector<std::string>(drawn.begin(), drawn.end()), types);
 }
 
 TEST(EmbreeQuery, MatchesBruteForceForRaysFromFarAway) {

@@ -1,5 +1,7 @@
 // Helpers for embree_test.cpp: random scenes of every primitive type whose
-// plugin is installed, random rays, and the brute-force double oracle.
+// plugin is installed (each type's random objects come from its cases
+// module, plugins/<type>/<type>_cases.cpp), random rays, and the
+// brute-force double oracle.
 #pragma once
 
 #include <algorithm>
@@ -7,11 +9,13 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "primitive_cases.hpp"
 #include "prism/backend.hpp"
 #include "prism/errors.hpp"
 #include "prism/geometry.hpp"
@@ -41,12 +45,12 @@ inline bool has_primitive(const std::string& type) {
 #define REQUIRE_PRIMITIVE(type) \
   if (!::prism::embree::testing::has_primitive(type)) GTEST_SKIP() << "primitive plugin '" << (type) << "' not found"
 
-// The types of the format whose plugin loads here.
+// Every type with random objects in its cases module (tests/cases/primitive_cases.hpp)
+// whose plugin loads here, ordered by type: no list of types here.
 inline std::vector<std::string> available_types() {
   std::vector<std::string> found;
-  for (const char* type : {"sphere", "plane", "box", "torus", "ring", "quadric", "cylinder", "cone"}) {
-    if (has_primitive(type)) found.emplace_back(type);
-  }
+  for (const cases::PrimitiveCases* type : cases::all_primitive_cases())
+    if (type->random_object && has_primitive(type->type)) found.push_back(type->type);
   return found;
 }
 
@@ -57,61 +61,27 @@ inline Scene load(const std::string& objects_json) {
   return load_scene_from_string(json, ".", registry(), "<embree test>");
 }
 
-using Rng = std::mt19937_64;
+using Rng = cases::SceneRng;
+using cases::num;
+using cases::Placement;
+using cases::uniform;
+using cases::vec;
 
-inline double uniform(Rng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
-
-inline std::string num(double x) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.17g", x);
-  return buffer;
-}
-
-inline std::string vec(double x, double y, double z) { return "[" + num(x) + ", " + num(y) + ", " + num(z) + "]"; }
-
-inline std::string random_vec(Rng& rng, double lo, double hi) {
-  return vec(uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi));
-}
-
-// Where objects go: centres in offset + [-8, 8]^3 * scale, sizes times scale.
-struct Placement {
-  glm::dvec3 offset{0};
-  double scale = 1;
-};
-
-// A random centre; a random rotation two times in three (else axis-aligned,
-// where box faces coincide with the BVH's boxes).
-inline std::string random_frame(Rng& rng, const Placement& at) {
-  const glm::dvec3 c = at.offset + at.scale * glm::dvec3(uniform(rng, -8, 8), uniform(rng, -8, 8), uniform(rng, -8, 8));
-  std::string frame = "\"center\": " + vec(c.x, c.y, c.z);
-  if (rng() % 3 == 0) return frame;
-  return frame + ", \"rotation\": {\"axis\": " + random_vec(rng, 0.1, 1) + ", \"degrees\": " + num(uniform(rng, 0, 360)) +
-         "}";
-}
-
-// One object of `type` with random parameters, as JSON.
+// One object of `type` with random parameters, as JSON: its cases module's.
 inline std::string random_object(Rng& rng, const std::string& type, const Placement& at = {}) {
-  const double s = at.scale * uniform(rng, 0.2, 1.5);
-  std::string body;
-  if (type == "sphere") body = "\"radius\": " + num(s);
-  if (type == "box") body = "\"half_size\": " + vec(s, s * uniform(rng, 0.1, 1), s * uniform(rng, 0.1, 1));
-  if (type == "torus") body = "\"major_radius\": " + num(s) + ", \"minor_radius\": " + num(s * uniform(rng, 0.05, 0.5));
-  if (type == "ring") body = "\"inner_radius\": " + num(s * 0.4) + ", \"outer_radius\": " + num(s);
-  if (type == "cylinder" || type == "cone") body = "\"radius\": " + num(s) + ", \"height\": " + num(2 * s);
-  if (type == "quadric") {
-    // Half the time a clipped hyperboloid (bounded), else an unclipped ellipsoid (brute force).
-    if (rng() % 2 == 0) {
-      body = "\"coefficients\": [1, -1, 1, 0, 0, 0, 0, 0, 0, " + num(-0.25 * s * s) + "], \"clip_min\": " +
-             vec(-s, -s, -s) + ", \"clip_max\": " + vec(s, s, s);
-    } else {
-      body = "\"coefficients\": [" + num(1 / (s * s)) + ", 2, 3, 0, 0, 0, 0, 0, 0, -1]";
-    }
+  const cases::PrimitiveCases* found = cases::find_primitive_cases(type);
+  if (!found || !found->random_object) throw std::runtime_error("no random objects for the type '" + type + "'");
+  return found->random_object(rng, at);
+}
+
+// A type of `types`, each drawn as often as its random_share says.
+inline std::string random_type(Rng& rng, const std::vector<std::string>& types) {
+  for (;;) {
+    const std::string& type = types[rng() % types.size()];
+    const cases::PrimitiveCases* found = cases::find_primitive_cases(type);
+    const double share = found ? found->random_share : 1;  // none: random_object says so
+    if (share >= 1 || uniform(rng, 0, 1) < share) return type;
   }
-  if (type == "plane") {
-    const glm::dvec3 p = at.offset + at.scale * glm::dvec3(uniform(rng, -12, 12), uniform(rng, -12, 12), uniform(rng, -12, 12));
-    return R"({"type": "plane", "point": )" + vec(p.x, p.y, p.z) + ", \"normal\": " + random_vec(rng, -1, 1) + "}";
-  }
-  return "{\"type\": \"" + type + "\", " + random_frame(rng, at) + ", " + body + "}";
 }
 
 // A random scene of `count` objects of the available types; about one in ten
@@ -123,10 +93,7 @@ inline std::string random_objects_json(Rng& rng, const std::vector<std::string>&
     if (!objects.empty() && rng() % 10 == 0) {
       objects.push_back(objects[rng() % objects.size()]);
     } else {
-      // Planes are rare: a scene full of them tests little of the BVH.
-      std::string type = types[rng() % types.size()];
-      if (type == "plane" && rng() % 4 != 0) type = types[0];
-      objects.push_back(random_object(rng, type, at));
+      objects.push_back(random_object(rng, random_type(rng, types), at));
     }
   }
   std::string json;

@@ -3,7 +3,7 @@
 // for the CPU and the GPU, plain GLSL 4.50. The kernel generator places it
 // after the kernel header (#version, extensions, PRISM_BINDING_* and
 // PRISM_FEATURE_* defines) and before the shared library
-// (prism/sdk/shared/library.shared.glsl) and every plugin source.
+// (prism/sdk/modules/library.shared.glsl) and every plugin source.
 //
 // Precision: double, unless the header defines PRISM_REAL_FLOAT (a kernel
 // whose plugins intersect in float, `--precision float`; also the float

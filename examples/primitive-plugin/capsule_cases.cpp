@@ -1,6 +1,7 @@
 // The capsule's test cases, found by Prism's suites when the capsule is
 // built inside a Prism tree (its stability oracle and stiff families, its
-// trace-agreement, uv and benchmark objects): see Prism's
+// trace-agreement, uv and benchmark objects, random objects for the Embree
+// backend's tests): see Prism's
 // tests/cases/primitive_cases.hpp. A build against the installed package
 // (this folder's CMakeLists.txt) does not use this file.
 //
@@ -18,8 +19,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -147,13 +147,7 @@ void add_capsule(Builder& b) {
           const double r = 1, h = 2;
           c.objects =
               nlohmann::json::array({placed({{"type", "capsule"}, {"radius", r}, {"height", h}}, kCenterA, kTilted)});
-          for (int i = 0; i < n; ++i) {
-            const double phi = rng.range(0, 2 * kPi), off = (i % 2 ? 1.0 : -1.0) * eta * h;
-            const double y = i % 4 < 2 ? off : h + off;
-            const V p{r * std::cos(phi), y, r * std::sin(phi)};
-            const V N = normalize(kTilted.apply({std::cos(phi), 0, std::sin(phi)}));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
-          }
+          for (int i = 0; i < n; ++i) c.rays.push_back(ray_beside_tube_end(rng, i, r, h, eta));
           return c;
         });
 }
@@ -181,6 +175,11 @@ PrimitiveCases make_capsule_cases() {
                      [](BenchRng& r) { return glm::dvec3(0, 0.5, 0) + prism::cases::bench_origins(4.0)(r); },
                      [](BenchRng& r) { return glm::dvec3(0, r.uniform(0, 1), 0) + r.in_ball(0.45); },
                      {}});
+  // Random scenes: radius s = scale * [0.1, 0.75), height 2 s.
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = 0.5 * random_size(rng, at);
+    return random_framed_object(rng, at, "capsule", "\"radius\": " + num(s) + ", \"height\": " + num(2 * s));
+  };
   return c;
 }
 

@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -137,9 +135,7 @@ void add_box(Builder& b) {
             p[other] -= (first ? s2 : s1) * eta * size;
             double nl[3] = {0, 0, 0};
             nl[face] = first ? s1 : s2;
-            const V N = normalize(kTilted.apply({nl[0], nl[1], nl[2]}));
-            const V P = kCenterA + kTilted.apply({p[0], p[1], p[2]});
-            c.rays.push_back(ray_to(P, rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, {p[0], p[1], p[2]}, {nl[0], nl[1], nl[2]}));
           }
           return c;
         });
@@ -157,9 +153,7 @@ void add_box(Builder& b) {
               if (k != face) p[k] -= s[k] * eta * size;
             double nl[3] = {0, 0, 0};
             nl[face] = s[face];
-            const V N = normalize(kTilted.apply({nl[0], nl[1], nl[2]}));
-            const V P = kCenterA + kTilted.apply({p[0], p[1], p[2]});
-            c.rays.push_back(ray_to(P, rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, {p[0], p[1], p[2]}, {nl[0], nl[1], nl[2]}));
           }
           return c;
         });
@@ -215,6 +209,11 @@ PrimitiveCases make_box_cases() {
   c.bench.push_back({{{"half_size", {1.0, 0.5, 0.75}}}, prism::cases::bench_origins(5.0), [](BenchRng& r) {
                        return glm::dvec3(r.uniform(-0.9, 0.9), r.uniform(-0.45, 0.45), r.uniform(-0.675, 0.675));
                      }, {}});
+  // Random scenes: half sizes s, s * [0.1, 1), s * [0.1, 1), s = scale * [0.2, 1.5).
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at), y = s * uniform(rng, 0.1, 1), z = s * uniform(rng, 0.1, 1);
+    return random_framed_object(rng, at, "box", "\"half_size\": " + vec(s, y, z));
+  };
   return c;
 }
 

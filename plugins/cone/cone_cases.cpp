@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -73,8 +71,7 @@ void add_cone(Builder& b) {
           for (int i = 0; i < n; ++i) {
             const double phi = rng.range(0, 2 * kPi), y = h * (1 + (i % 2 ? eta : -eta));
             const V p{k * y * std::cos(phi), y, k * y * std::sin(phi)};
-            const V N = normalize(kTilted.apply({p.x, -k * k * p.y, p.z}));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, p, {p.x, -k * k * p.y, p.z}));
           }
           return c;
         });
@@ -105,6 +102,11 @@ PrimitiveCases make_cone_cases() {
                        const double y = r.uniform(0.1, 1.9), a = r.uniform(0, 2 * kPi), s = y / 2.0;
                        return glm::dvec3(s * std::cos(a), y, s * std::sin(a));
                      }, {}});
+  // Random scenes: radius s = scale * [0.2, 1.5), height 2 s.
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at);
+    return random_framed_object(rng, at, "cone", "\"radius\": " + num(s) + ", \"height\": " + num(2 * s));
+  };
   return c;
 }
 

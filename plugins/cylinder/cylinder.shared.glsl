@@ -3,7 +3,7 @@
 // clipped to 0 <= y <= height, an open tube around local y.
 //
 // It has no numerics of its own: intersect and surface are the module
-// `quadric` (prism/sdk/shared/quadric.shared.glsl), which the quadric and
+// `quadric` (prism/sdk/modules/quadric.shared.glsl), which the quadric and
 // the other axial plugin run too, so t and the normal are bit-identical to
 // those of the equivalent `quadric` object, on the CPU as on the GPU. The
 // record is the AxialQuadricRecord of prism/sdk/axial_quadric.hpp, whose

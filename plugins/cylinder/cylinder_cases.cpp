@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -70,13 +68,7 @@ void add_cylinder(Builder& b) {
           const double r = 1, h = 2;
           c.objects =
               nlohmann::json::array({placed({{"type", "cylinder"}, {"radius", r}, {"height", h}}, kCenterA, kTilted)});
-          for (int i = 0; i < n; ++i) {
-            const double phi = rng.range(0, 2 * kPi), off = (i % 2 ? 1.0 : -1.0) * eta * h;
-            const double y = i % 4 < 2 ? off : h + off;
-            const V p{r * std::cos(phi), y, r * std::sin(phi)};
-            const V N = normalize(kTilted.apply({std::cos(phi), 0, std::sin(phi)}));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
-          }
+          for (int i = 0; i < n; ++i) c.rays.push_back(ray_beside_tube_end(rng, i, r, h, eta));
           return c;
         });
 }
@@ -106,6 +98,11 @@ PrimitiveCases make_cylinder_cases() {
                        const double y = r.uniform(0.1, 1.9), a = r.uniform(0, 2 * kPi);
                        return glm::dvec3(std::cos(a), y, std::sin(a));
                      }, {}});
+  // Random scenes: radius s = scale * [0.2, 1.5), height 2 s.
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at);
+    return random_framed_object(rng, at, "cylinder", "\"radius\": " + num(s) + ", \"height\": " + num(2 * s));
+  };
   return c;
 }
 

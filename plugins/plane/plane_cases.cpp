@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -74,6 +72,14 @@ PrimitiveCases make_plane_cases() {
                        d.y = std::abs(d.y);
                        return prism::cases::bench_ray(o, o + d);
                      }});
+  // Random scenes: a point of offset + [-12, 12]^3 * scale and any normal;
+  // a quarter as often as the others (a scene full of planes tests little
+  // of the BVH).
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const glm::dvec3 p = random_point(rng, at, 12);
+    return "{\"type\": \"plane\", \"point\": " + vec(p) + ", \"normal\": " + random_vec(rng, -1, 1) + "}";
+  };
+  c.random_share = 0.25;
   return c;
 }
 

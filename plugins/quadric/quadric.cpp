@@ -19,7 +19,7 @@
 // - clip_min/clip_max are coordinates (PRISM_FIELD_LENGTH): the core checks
 //   |x| <= 1e7 on the numbers only, and a null entry reads as -inf / +inf.
 // - intersect and surface are written once, for the CPU and the GPU, in
-//   quadric.shared.glsl, on the module prism/sdk/shared/quadric.shared.glsl
+//   quadric.shared.glsl, on the module prism/sdk/modules/quadric.shared.glsl
 //   that cylinder and cone run too.
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
 // Quadric primitive, written once for the CPU and the GPU (the shared
 // dialect: prism/sdk/dialect.hpp): the module `quadric`
-// (prism/sdk/shared/quadric.shared.glsl), which cylinder and cone run too,
+// (prism/sdk/modules/quadric.shared.glsl), which cylinder and cone run too,
 // so the three give the same t and normal on both sides. Method: origin
 // re-centred at the foot of the perpendicular (and at the vertex of f when
 // the roots are close), stable roots c/q, q/a with an fma discriminant,

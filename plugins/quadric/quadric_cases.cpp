@@ -10,9 +10,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -111,8 +109,7 @@ void add_quadric(Builder& b) {
             const double y = rng.range(-0.95, 0.95) * ym, phi = rng.range(0, 2 * kPi);
             const double rho = std::sqrt(1 + k * k * y * y);
             const V p{rho * std::cos(phi), y, rho * std::sin(phi)};
-            const V N = normalize(kTilted.apply({p.x, -k * k * p.y, p.z}));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, p, {p.x, -k * k * p.y, p.z}));
           }
           return c;
         });
@@ -136,8 +133,7 @@ void add_quadric(Builder& b) {
             }
             const double rho = rng.range(0, 2.8), phi = rng.range(0, 2 * kPi), side = rng.sign();
             const V p{rho * std::cos(phi), side * std::sqrt(1 + rho * rho) / k, rho * std::sin(phi)};
-            const V N = normalize(kTilted.apply({-p.x, k * k * p.y, -p.z}));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, p, {-p.x, k * k * p.y, -p.z}));
           }
           return c;
         });
@@ -153,8 +149,7 @@ void add_quadric(Builder& b) {
           for (int i = 0; i < n; ++i) {
             const V u = rng.unit();
             const V p{u.x, u.y / sq, u.z};
-            const V N = normalize(kTilted.apply({u.x, u.y * sq, u.z}));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, p, {u.x, u.y * sq, u.z}));
           }
           return c;
         });
@@ -169,8 +164,7 @@ void add_quadric(Builder& b) {
               {placed({{"type", "quadric"}, {"coefficients", {s, s, s, 0, 0, 0, 0, 0, 0, -s}}}, kCenterA, kTilted)});
           for (int i = 0; i < n; ++i) {
             const V u = rng.unit();
-            const V N = normalize(kTilted.apply(u));
-            c.rays.push_back(ray_to(kCenterA + kTilted.apply(u), rng.cone(-N, 0.05, 1), rng.range(1, 4)));
+            c.rays.push_back(ray_at_tilted_surface(rng, u, u));
           }
           return c;
         });
@@ -228,6 +222,17 @@ PrimitiveCases make_quadric_cases() {
          return glm::dvec3(s * std::cos(a), y, s * std::sin(a));
        },
        {}});
+  // Random scenes, s = scale * [0.2, 1.5): half the time a hyperboloid
+  // clipped to [-s, s]^3 (bounded), else an unclipped ellipsoid (unbounded
+  // to the BVH: tested by brute force).
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at);
+    const std::string fields =
+        rng() % 2 == 0 ? "\"coefficients\": [1, -1, 1, 0, 0, 0, 0, 0, 0, " + num(-0.25 * s * s) +
+                             "], \"clip_min\": " + vec(-s, -s, -s) + ", \"clip_max\": " + vec(s, s, s)
+                       : "\"coefficients\": [" + num(1 / (s * s)) + ", 2, 3, 0, 0, 0, 0, 0, 0, -1]";
+    return random_framed_object(rng, at, "quadric", fields);
+  };
   return c;
 }
 

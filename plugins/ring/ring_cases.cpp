@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -105,6 +103,11 @@ PrimitiveCases make_ring_cases() {
                        const double a = r.uniform(0, 2 * kPi), s = std::sqrt(r.uniform(0.55 * 0.55, 0.95 * 0.95));
                        return glm::dvec3(s * std::cos(a), 0.0, s * std::sin(a));
                      }, {}});
+  // Random scenes: outer radius s = scale * [0.2, 1.5), inner 0.4 s.
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at);
+    return random_framed_object(rng, at, "ring", "\"inner_radius\": " + num(0.4 * s) + ", \"outer_radius\": " + num(s));
+  };
   return c;
 }
 

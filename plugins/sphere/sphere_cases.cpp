@@ -9,9 +9,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -74,6 +72,11 @@ PrimitiveCases make_sphere_cases() {
   // Unit sphere: hits aim inside radius 0.9.
   c.bench.push_back(
       {{{"radius", {1.0}}}, prism::cases::bench_origins(4.0), [](BenchRng& r) { return r.in_ball(0.9); }, {}});
+  // Random scenes: radius scale * [0.2, 1.5).
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at);
+    return random_framed_object(rng, at, "sphere", "\"radius\": " + num(s));
+  };
   return c;
 }
 

@@ -10,9 +10,7 @@
 namespace {
 
 using namespace prism::stability;
-using prism::cases::BenchCase;
-using prism::cases::BenchRng;
-using prism::cases::PrimitiveCases;
+using namespace prism::cases;
 
 // ---------------------------------------------------------------- the oracle
 
@@ -305,6 +303,11 @@ PrimitiveCases make_torus_cases() {
                        const double a = r.uniform(0, 2 * kPi);
                        return glm::dvec3(std::cos(a), 0.0, std::sin(a));
                      }, {}});
+  // Random scenes: major radius s = scale * [0.2, 1.5), minor s * [0.05, 0.5).
+  c.random_object = [](SceneRng& rng, const Placement& at) {
+    const double s = random_size(rng, at), minor = s * uniform(rng, 0.05, 0.5);
+    return random_framed_object(rng, at, "torus", "\"major_radius\": " + num(s) + ", \"minor_radius\": " + num(minor));
+  };
   return c;
 }
 

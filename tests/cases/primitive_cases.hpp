@@ -20,13 +20,18 @@
 //                             a hit read back through a grid texture
 //   bench                     bench/micro/primitive_bench.cpp: the plugin's
 //                             CPU intersector on hit and miss rays
+//   random_object             backends/embree's tests: random scenes of
+//                             every type against a brute-force oracle
 //
 // Any part may be left empty. Everything crosses as C++ objects between
 // programs and modules of one build (same compiler, same standard library);
 // nothing here is installed.
 #pragma once
 
+#include <cmath>
+#include <cstdio>
 #include <functional>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -38,6 +43,28 @@
 #include "spheres_scene.hpp"
 
 namespace prism::cases {
+
+// ---------------------------------------------------------------- stiff families
+
+// A ray at the point `p` of an object placed at stability::kCenterA and
+// rotated by stability::kTilted (the "rotated" families), `normal` its
+// outward normal there (any length; both in the object's frame): from
+// outside, within acos(0.05) of the inward normal, starting 1 to 4 away.
+inline stability::Ray ray_at_tilted_surface(stability::Rng& rng, const stability::V& p, const stability::V& normal) {
+  const stability::V N = stability::normalize(stability::kTilted.apply(normal));
+  return stability::ray_to(stability::kCenterA + stability::kTilted.apply(p), rng.cone(-N, 0.05, 1), rng.range(1, 4));
+}
+
+// Ray i of a family aimed at the tube x² + z² = r² (axis y) of a "rotated"
+// object, eta * h beside the tube's ends y = 0 and y = h (a cylinder's rims,
+// a capsule's seams): i % 4 < 2 the bottom end, else the top; odd i toward
+// +y (into the tube at the bottom, past it at the top), even i toward -y.
+inline stability::Ray ray_beside_tube_end(stability::Rng& rng, int i, double r, double h, double eta) {
+  const double phi = rng.range(0, 2 * stability::kPi), off = (i % 2 ? 1.0 : -1.0) * eta * h;
+  const double y = i % 4 < 2 ? off : h + off;
+  const stability::V p{r * std::cos(phi), y, r * std::sin(phi)};
+  return ray_at_tilted_surface(rng, p, {std::cos(phi), 0, std::sin(phi)});
+}
 
 // ---------------------------------------------------------------- trace agreement
 
@@ -102,6 +129,56 @@ struct BenchCase {
   std::function<PrismRay(BenchRng&)> miss_candidate = {};
 };
 
+// ---------------------------------------------------------------- random scenes
+
+// The generator of the Embree backend's random scenes.
+using SceneRng = std::mt19937_64;
+
+inline double uniform(SceneRng& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
+
+// A number as JSON, every bit kept.
+inline std::string num(double x) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", x);
+  return buffer;
+}
+
+inline std::string vec(double x, double y, double z) { return "[" + num(x) + ", " + num(y) + ", " + num(z) + "]"; }
+inline std::string vec(const glm::dvec3& v) { return vec(v.x, v.y, v.z); }
+
+inline std::string random_vec(SceneRng& rng, double lo, double hi) {
+  return vec(uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi));
+}
+
+// Where a random scene's objects go: centres (a plane's point) in
+// offset + [-8, 8]^3 * scale, sizes times scale.
+struct Placement {
+  glm::dvec3 offset{0};
+  double scale = 1;
+};
+
+// A random size for an object placed by `at`: scale * [0.2, 1.5).
+inline double random_size(SceneRng& rng, const Placement& at) { return at.scale * uniform(rng, 0.2, 1.5); }
+
+// A point of offset + [-extent, extent]^3 * scale.
+inline glm::dvec3 random_point(SceneRng& rng, const Placement& at, double extent) {
+  return at.offset + at.scale * glm::dvec3(uniform(rng, -extent, extent), uniform(rng, -extent, extent),
+                                           uniform(rng, -extent, extent));
+}
+
+// {"type": type, a random centre, a random rotation two times in three (else
+// axis-aligned, where box faces coincide with the BVH's boxes), then `fields`}.
+inline std::string random_framed_object(SceneRng& rng, const Placement& at, const std::string& type,
+                                        const std::string& fields) {
+  std::string frame = "\"center\": " + vec(random_point(rng, at, 8));
+  if (rng() % 3 != 0)
+    frame += ", \"rotation\": {\"axis\": " + random_vec(rng, 0.1, 1) + ", \"degrees\": " + num(uniform(rng, 0, 360)) + "}";
+  return "{\"type\": \"" + type + "\", " + frame + ", " + fields + "}";
+}
+
+// One object of the type with random parameters placed by `at`, as JSON.
+using RandomObjectMaker = std::function<std::string(SceneRng& rng, const Placement& at)>;
+
 // ---------------------------------------------------------------- one primitive
 
 struct PrimitiveCases {
@@ -119,6 +196,12 @@ struct PrimitiveCases {
   std::vector<AgreementCase> agreement;
   std::vector<UvCase> uv;
   std::vector<BenchCase> bench;
+
+  // Random scenes (backends/embree): one random object, and how often a
+  // scene draws this type relative to the others (in (0, 1]; planes are
+  // rare: a scene full of them tests little of the BVH).
+  RandomObjectMaker random_object;
+  double random_share = 1;
 };
 
 // Every case module on the search path, one per type (the first found wins,

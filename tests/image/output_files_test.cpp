@@ -28,12 +28,7 @@ Image grey_image(int width, int height, float value) {
 
 template <typename Fn>
 std::string runtime_error_of(Fn fn) {
-  try {
-    fn();
-  } catch (const RuntimeError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::message_of<RuntimeError>(fn);
 }
 
 class OutputFiles : public ::testing::Test {

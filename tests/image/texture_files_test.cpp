@@ -21,12 +21,7 @@ namespace fs = std::filesystem;
 
 template <typename Fn>
 std::string error_of(Fn fn) {
-  try {
-    fn();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
+  return test::message_of<InputError>(fn);
 }
 
 class TextureFiles : public ::testing::Test {

@@ -24,14 +24,7 @@ namespace fs = std::filesystem;
 const std::string kHead = R"({"prism": 1, "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]}, )";
 
 // The InputError message `load` throws, or "(no error)".
-std::string error_of(const std::function<void()>& load) {
-  try {
-    load();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+std::string error_of(const std::function<void()>& load) { return test::message_of<InputError>(load); }
 
 bool starts_with(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
 

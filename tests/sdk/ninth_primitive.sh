@@ -6,15 +6,16 @@
 #   - prism_stability --quick --primitive TYPE (every usable backend)
 #   - the trace-agreement tests of TYPE (every backend against the reference)
 #   - its uv tests, when its cases have any
+#   - the Embree backend's random scenes draw TYPE and match brute force
 #   - the microbenchmarks list and run TYPE (when they are built)
 #
-#   ninth_primitive.sh FOLDER TYPE PRISM STABILITY AGREEMENT_TEST SHADING_TEST [BENCH]
+#   ninth_primitive.sh FOLDER TYPE PRISM STABILITY AGREEMENT_TEST SHADING_TEST EMBREE_TEST [BENCH]
 set -euo pipefail
-if [ $# -ne 7 ] && [ $# -ne 6 ]; then
-  echo "usage: $0 FOLDER TYPE PRISM STABILITY AGREEMENT_TEST SHADING_TEST [BENCH]" >&2
+if [ $# -ne 8 ] && [ $# -ne 7 ]; then
+  echo "usage: $0 FOLDER TYPE PRISM STABILITY AGREEMENT_TEST SHADING_TEST EMBREE_TEST [BENCH]" >&2
   exit 2
 fi
-folder="$1" type="$2" prism="$3" stability="$4" agreement="$5" shading="$6" bench="${7:-}"
+folder="$1" type="$2" prism="$3" stability="$4" agreement="$5" shading="$6" embree="$7" bench="${8:-}"
 [ -f "$folder/libprism_primitive_$type.so" ] || { echo "ninth_primitive: no $type plugin in $folder"; exit 1; }
 [ -f "$folder/libprism_cases_$type.so" ] || { echo "ninth_primitive: no $type case module in $folder"; exit 1; }
 export PRISM_PLUGIN_PATH="$folder"
@@ -40,6 +41,10 @@ echo "== trace agreement"
 run_gtest "$agreement" "*TraceAgreement*_${type}*"
 echo "== uv"
 run_gtest "$shading" "*PrimitiveUvTest.*$(printf '%s' "${type:0:1}" | tr a-z A-Z)${type:1}*"
+
+echo "== the Embree backend's random scenes"
+run_gtest "$embree" "EmbreeQuery.RandomScenesHoldEveryAvailableType:EmbreeQuery.MatchesBruteForceOnRandomMixedScenes"
+grep -Eq "types:.* $type( |\$)" "$work/gtest.txt" || { echo "ninth_primitive: the random scenes do not draw $type"; exit 1; }
 
 if [ -n "$bench" ]; then
   echo "== microbenchmarks"

@@ -82,6 +82,18 @@ struct CapturedRun {
 CapturedRun run_captured(const std::vector<std::string>& args, const std::vector<std::string>& env,
                          const std::filesystem::path& out_file, const std::filesystem::path& err_file);
 
+// The message of the `Error` that `call` throws, or "(no error)" when it
+// throws none (another exception goes through).
+template <typename Error, typename Call>
+std::string message_of(Call&& call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
 // A new, empty folder for this test's files (unique per process and test).
 std::filesystem::path fresh_temp_dir();
 

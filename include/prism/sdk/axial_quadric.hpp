@@ -2,7 +2,7 @@
 // 0 <= y <= height around the local y axis, with radius and height kept for
 // bounds and uv (u = 0.5 + atan2(z, x)/2pi, v = y/height). Intersection,
 // point and normal are the quadric code itself (prism_quadric_intersect and
-// prism_axial_quadric_surface in prism/sdk/shared/quadric.shared.glsl), so t
+// prism_axial_quadric_surface in prism/sdk/modules/quadric.shared.glsl), so t
 // and N are bit-identical to the `quadric` object each stands for.
 #pragma once
 

@@ -5,7 +5,7 @@
 // QuadricShape and call exactly these functions, so they give bit-identical
 // t and normal to the quadric they stand for (spec, Objects). The maths is
 // written once, for the CPU and the GPU, in
-// prism/sdk/shared/quadric.shared.glsl (the method is described there);
+// prism/sdk/modules/quadric.shared.glsl (the method is described there);
 // these are its double instantiations (prism::sdk::f64) on QuadricShape.
 #pragma once
 
@@ -19,7 +19,7 @@
 #include "prism/sdk/primitive_sdk.hpp"
 #include "prism/sdk/shared_plugin.hpp"
 
-#define PRISM_SHARED_SOURCE "prism/sdk/shared/quadric.shared.glsl"
+#define PRISM_SHARED_SOURCE "prism/sdk/modules/quadric.shared.glsl"
 #include "prism/sdk/instantiate.hpp"
 
 namespace prism::sdk {

@@ -4,7 +4,7 @@
 // only exact-zero tests are the ones the spec asks for (a quadratic whose t^2
 // coefficient is exactly 0 is linear). See docs/numerics.md for why
 // each form was chosen. The functions shared with the GPU are written once,
-// in prism/sdk/shared/library.shared.glsl; these are their double
+// in prism/sdk/modules/library.shared.glsl; these are their double
 // instantiations (prism::sdk::f64) under the C++ SDK's names.
 #pragma once
 
@@ -16,7 +16,7 @@
 
 #include "prism/sdk/library.hpp"
 
-#define PRISM_SHARED_SOURCE "prism/sdk/shared/roots.shared.glsl"
+#define PRISM_SHARED_SOURCE "prism/sdk/modules/roots.shared.glsl"
 #include "prism/sdk/instantiate.hpp"
 
 namespace prism::sdk {
@@ -56,7 +56,7 @@ inline int solve_quadratic(double a, double b, double c, double& t0, double& t1)
 // derivative is 0 or NaN), so the result always lies in [a, b]. It stops
 // after a Newton step shorter than `tol` (which leaves an error ~tol^2) or
 // once the bracket itself is narrower than `tol`.
-// The steps are prism/sdk/shared/roots.shared.glsl's, which the GPU runs too.
+// The steps are prism/sdk/modules/roots.shared.glsl's, which the GPU runs too.
 template <class Fn>
 double solve_bracketed(const Fn& fn, double a, double b, double fa, double fb, double tol) {
   f64::PrismBracket bracket = f64::prism_bracket_start(a, b, fa, fb, tol);

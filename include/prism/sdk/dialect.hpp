@@ -3,7 +3,7 @@
 // side), in double and in float.
 //
 // A primitive's intersector and the SDK maths it shares (`*.shared.glsl`:
-// prism/sdk/shared/library.shared.glsl, quadric.shared.glsl,
+// prism/sdk/modules/library.shared.glsl, quadric.shared.glsl,
 // roots.shared.glsl, and each plugins/<type>/<type>.shared.glsl) are written
 // once, in GLSL with these words, which each language's prelude defines:
 //

@@ -1,7 +1,7 @@
 // Ray-sphere intersection shared by the sphere plugin and the core's visible
 // light spheres, so that both give the same t for the same sphere. Written
 // once, for the CPU and the GPU, as prism_intersect_sphere in
-// prism/sdk/shared/library.shared.glsl (the method is described there).
+// prism/sdk/modules/library.shared.glsl (the method is described there).
 #pragma once
 
 #include <glm/glm.hpp>

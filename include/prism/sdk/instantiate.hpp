@@ -1,7 +1,7 @@
 // Instantiates the shared-dialect source named by PRISM_SHARED_SOURCE (an
 // include path) in double and in float: in namespaces prism::sdk::f64 and
 // prism::sdk::f32, with internal linkage, after the SDK library
-// (prism/sdk/shared/library.shared.glsl). No include guard: include it once
+// (prism/sdk/modules/library.shared.glsl). No include guard: include it once
 // per source, as prism/sdk/dialect.hpp shows.
 #include "prism/sdk/library.hpp"
 
