@@ -30,8 +30,10 @@ static_assert(std::size(kRayKindNames) <= kRayCounterCount);
 
 namespace {
 constexpr long kSamplesPerTile = 1 << 18;
-// gpu/kernel.glsl scrambles a tile's work groups as k * 104729 mod n in 32 bits.
-static_assert(uint64_t(kSamplesPerTile / (kRenderLocalSize * kRenderLocalSize)) * 104729u < (uint64_t(1) << 32));
+// gpu/kernel.glsl scrambles a tile's work groups as k * kGroupScramblePrime mod n
+// in 32 bits: the product must fit, and the prime must exceed the group count.
+constexpr uint64_t kMaxGroupsPerTile = kSamplesPerTile / (kRenderLocalSize * kRenderLocalSize);
+static_assert(kMaxGroupsPerTile * kGroupScramblePrime < (uint64_t(1) << 32) && kMaxGroupsPerTile < kGroupScramblePrime);
 }
 
 std::pair<int, int> tile_size(const ImageSettings& image) {

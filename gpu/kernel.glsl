@@ -58,15 +58,14 @@ PrismWorldRay prism_camera_ray(int i, int j, dvec2 offset) {
 }
 
 // The work group's block of the tile. Work groups are handed out in a
-// scrambled order (group k renders block k * P mod n, P a prime above any
-// group count, so the map is one to one): a CPU driver gives each thread a
-// contiguous run of groups, and in row order one thread would get the sky
-// while another gets the scene. A tile has at most 2^18 samples, so at most
-// 4096 groups of 64: k * P stays below 2^32.
+// scrambled order (group k renders block k * P mod n, P the prime the
+// generator defines, above any group count, so the map is one to one): a
+// CPU driver gives each thread a contiguous run of groups, and in row order
+// one thread would get the sky while another gets the scene. gpu_dispatch.cpp
+// checks that k * P stays below 2^32.
 ivec2 prism_block() {
-  const uint P = 104729u;
   uint n = gl_NumWorkGroups.x * gl_NumWorkGroups.y;
-  uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * P % n;
+  uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * PRISM_GROUP_SCRAMBLE % n;
   return ivec2(k % gl_NumWorkGroups.x, k / gl_NumWorkGroups.x);
 }
 

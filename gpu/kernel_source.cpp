@@ -61,6 +61,7 @@ void append_defines(std::ostringstream& out, const std::vector<Feature>& feature
   for (const auto& [name, value] : bindings) out << "#define " << name << ' ' << value << '\n';
   out << "#define PRISM_LOCAL_SIZE_X " << options.local_size_x << '\n';
   out << "#define PRISM_LOCAL_SIZE_Y " << options.local_size_y << '\n';
+  out << "#define PRISM_GROUP_SCRAMBLE " << kGroupScramblePrime << "u\n";
   if (options.trace) out << "#define PRISM_MODE_TRACE 1\n";
   if (options.float_primitives) out << "#define PRISM_REAL_FLOAT 1\n";
   for (Feature f : features) out << "#define " << feature_macro(f) << " 1\n";

@@ -13,6 +13,11 @@
 
 namespace prism::gpu {
 
+// The prime the render kernel scrambles its work groups by (group k renders
+// block k * P mod n; PRISM_GROUP_SCRAMBLE in gpu/kernel.glsl): above any
+// group count, so the map is one to one.
+constexpr uint32_t kGroupScramblePrime = 104729;
+
 struct KernelOptions {
   bool trace = false;         // the `prism trace` kernel instead of the renderer
   bool all_features = false;  // compile every feature in, whatever the scene uses

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <random>
 
 #include "primitive_cases.hpp"
@@ -71,22 +72,19 @@ std::vector<prism::TraceQuery> random_rays(const AgreementCase& c, int count) {
   return rays;
 }
 
-std::vector<prism::TraceResult> trace(prism::Registry& registry, const std::string& backend, prism::Precision precision,
-                                      const prism::Scene& scene, const std::vector<prism::TraceQuery>& rays) {
+// `backend`'s answers in `precision`; nullopt when it has no such path (the
+// default Backend refuses float).
+std::optional<std::vector<prism::TraceResult>> trace(prism::Registry& registry, const std::string& backend,
+                                                     prism::Precision precision, const prism::Scene& scene,
+                                                     const std::vector<prism::TraceQuery>& rays) {
   auto instance = registry.backend(backend)->create();
-  instance->set_precision(precision);
+  try {
+    instance->set_precision(precision);
+  } catch (const prism::InputError&) {
+    return std::nullopt;
+  }
   instance->prepare(scene);
   return instance->trace(rays);
-}
-
-// Whether `backend` has a float path (the default Backend refuses one).
-bool has_float_path(prism::Registry& registry, const std::string& backend) {
-  try {
-    registry.backend(backend)->create()->set_precision(prism::Precision::float32);
-    return true;
-  } catch (const prism::InputError&) {
-    return false;
-  }
 }
 
 void expect_agreement(const std::vector<prism::TraceResult>& expected, const std::vector<prism::TraceResult>& actual,
@@ -118,18 +116,18 @@ TEST_P(TraceAgreement, MatchesReferenceOnRandomRays) {
   prism::Registry registry;
   prism::Scene scene = prism::load_scene_from_string(scene_for(primitive), ".", registry);
   const auto rays = random_rays(primitive, 20000);
-  const auto expected = trace(registry, "reference", prism::Precision::float64, scene, rays);
+  const auto expected = trace(registry, "reference", prism::Precision::float64, scene, rays).value();
   if (backend != "reference")
-    expect_agreement(expected, trace(registry, backend, prism::Precision::float64, scene, rays),
+    expect_agreement(expected, trace(registry, backend, prism::Precision::float64, scene, rays).value(),
                      primitive.name + " on " + backend + " in double");
   const PrismPrimitiveDesc& type = *scene.objects[0].desc;
-  if (type.intersect_float == type.intersect)  // ABI 4: no float instantiation (not in the shared dialect)
+  if (type.intersect_float == type.intersect) {  // ABI 4: no float instantiation (not in the shared dialect)
     std::printf("%s has no float instantiation to measure\n", type.type_name);
-  else if (!has_float_path(registry, backend))
+  } else if (auto in_float = trace(registry, backend, prism::Precision::float32, scene, rays)) {
+    expect_agreement(expected, *in_float, primitive.name + " on " + backend + " in float");
+  } else {
     std::printf("%s computes in double only: no float instantiation to measure\n", backend.c_str());
-  else
-    expect_agreement(expected, trace(registry, backend, prism::Precision::float32, scene, rays),
-                     primitive.name + " on " + backend + " in float");
+  }
 }
 
 std::string name_of(const testing::TestParamInfo<TraceAgreement::ParamType>& info) {
