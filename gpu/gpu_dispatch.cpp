@@ -3,27 +3,18 @@
 #include <algorithm>
 #include <cstring>
 #include <iterator>
+#include <type_traits>
 
 namespace prism::gpu {
 
-KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primitives) {
+KernelOptions kernel_options(bool trace, const char* api_glue) {
   KernelOptions options;
   options.trace = trace;
   options.all_features = all_features_forced();
   options.api_glue = api_glue;
   options.local_size_x = trace ? kTraceLocalSize : kRenderLocalSize;
   options.local_size_y = trace ? 1 : kRenderLocalSize;
-  options.float_primitives = float_primitives;
   return options;
-}
-
-bool float_primitives_for(Precision precision) { return precision == Precision::float32; }
-
-// "float" as the reference backend says it (the stability suite exempts its
-// double-only families on exactly that word); the double kernel's wording
-// keeps the float32 shading in view, and the GPU's float caps with it.
-const char* precision_description(bool float_primitives) {
-  return float_primitives ? "float" : "double geometry, float32 shading";
 }
 
 static_assert(std::size(kRayKindNames) <= kRayCounterCount);
@@ -52,13 +43,6 @@ std::vector<Tile> tiles_of(const RenderSettings& settings) {
     for (int x0 = r.x; x0 < r.x + r.width; x0 += tw)
       tiles.push_back({x0, y0, std::min(tw, r.x + r.width - x0), std::min(th, r.y + r.height - y0)});
   return tiles;
-}
-
-std::vector<unsigned char> frame_bytes(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets) {
-  std::vector<unsigned char> bytes(sizeof frame + offsets.size() * sizeof(glm::dvec2));
-  std::memcpy(bytes.data(), &frame, sizeof frame);
-  if (!offsets.empty()) std::memcpy(bytes.data() + sizeof frame, offsets.data(), offsets.size() * sizeof(glm::dvec2));
-  return bytes;
 }
 
 Image blank_image(const RenderSettings& settings) {
@@ -95,22 +79,48 @@ void add_ray_counters(BackendStats& stats, const uint32_t counters[kRayCounterCo
   }
 }
 
-std::vector<GpuTraceRay> trace_records(std::span<const TraceQuery> rays) {
-  std::vector<GpuTraceRay> records(rays.size());
-  for (size_t i = 0; i < rays.size(); ++i) {
-    const TraceQuery& q = rays[i];
-    records[i] = GpuTraceRay{{q.origin.x, q.origin.y, q.origin.z, q.tmin}, {q.dir.x, q.dir.y, q.dir.z, 0.0}, {}, {}, {}};
-  }
-  return records;
+size_t trace_record_bytes(const PackedScene& packed) {
+  return packed.float_world ? sizeof(GpuTraceRayF) : sizeof(GpuTraceRay);
 }
 
-void read_trace_records(std::span<const GpuTraceRay> records, std::span<TraceResult> results) {
-  for (size_t i = 0; i < records.size(); ++i) {
-    TraceResult& r = results[i];
-    r.t = records[i].t_normal[0];
-    r.id = records[i].id[0];
-    r.normal = {records[i].t_normal[1], records[i].t_normal[2], records[i].t_normal[3]};
+namespace {
+
+template <class Record>
+void store_records(std::span<const TraceQuery> rays, const glm::dvec3& anchor, unsigned char* out) {
+  using W = std::remove_reference_t<decltype(Record{}.origin_tmin[0])>;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const TraceQuery& q = rays[i];
+    const glm::dvec3 o = q.origin - anchor;
+    const Record r{{W(o.x), W(o.y), W(o.z), W(q.tmin)}, {W(q.dir.x), W(q.dir.y), W(q.dir.z), W(0)}, {}, {}, {}};
+    std::memcpy(out + i * sizeof r, &r, sizeof r);
   }
+}
+
+template <class Record>
+void load_records(std::span<const unsigned char> bytes, std::span<TraceResult> results) {
+  for (size_t i = 0; i < results.size(); ++i) {
+    Record r;
+    std::memcpy(&r, bytes.data() + i * sizeof r, sizeof r);
+    TraceResult& out = results[i];
+    out.t = r.t_normal[0];
+    out.id = r.id[0];
+    out.normal = {r.t_normal[1], r.t_normal[2], r.t_normal[3]};
+  }
+}
+
+}  // namespace
+
+std::vector<unsigned char> trace_records(const PackedScene& packed, std::span<const TraceQuery> rays) {
+  std::vector<unsigned char> bytes(rays.size() * trace_record_bytes(packed));
+  if (packed.float_world) store_records<GpuTraceRayF>(rays, packed.anchor, bytes.data());
+  else store_records<GpuTraceRay>(rays, glm::dvec3(0), bytes.data());
+  return bytes;
+}
+
+void read_trace_records(const PackedScene& packed, std::span<const unsigned char> records,
+                        std::span<TraceResult> results) {
+  if (packed.float_world) load_records<GpuTraceRayF>(records, results);
+  else load_records<GpuTraceRay>(records, results);
 }
 
 }  // namespace prism::gpu

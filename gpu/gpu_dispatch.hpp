@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gpu_layout.hpp"
+#include "gpu_scene.hpp"
 #include "kernel_source.hpp"
 #include "prism/backend.hpp"
 
@@ -26,15 +27,8 @@ constexpr int kRenderLocalSize = 8;
 
 // The kernel options both backends build with: the work group size of the
 // render or trace kernel (the one their dispatches divide by), the forced
-// features (PRISM_KERNEL_FEATURES=all), the API's glue code, and whether the
-// plugins intersect in float (`--precision float`).
-KernelOptions kernel_options(bool trace, const char* api_glue, bool float_primitives = false);
-
-// Backend::set_precision for both GPU backends: whether the plugins run in
-// float (`float` yes; `auto` and `double` no: double until the kernels choose
-// per object), and what `--stats` info.precision then says.
-bool float_primitives_for(Precision precision);
-const char* precision_description(bool float_primitives);
+// features (PRISM_KERNEL_FEATURES=all) and the API's glue code.
+KernelOptions kernel_options(bool trace, const char* api_glue);
 
 struct Tile {
   int x0, y0, width, height;
@@ -48,8 +42,6 @@ std::pair<int, int> tile_size(const ImageSettings& image);
 // edge tiles clipped, in image coordinates; InputError for a bad region.
 std::vector<Tile> tiles_of(const RenderSettings& settings);
 
-// The frame buffer's contents: the GpuFrame, then the sample offsets.
-std::vector<unsigned char> frame_bytes(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets);
 
 // A black image (ids -1) of the requested size (the region's) and AOVs.
 Image blank_image(const RenderSettings& settings);
@@ -58,10 +50,14 @@ void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pi
 // Adds a tile's ray counters (the output buffer's header) to `stats`.
 void add_ray_counters(BackendStats& stats, const uint32_t counters[kRayCounterCount]);
 
-// The trace kernel's input records for `rays`.
-std::vector<GpuTraceRay> trace_records(std::span<const TraceQuery> rays);
-// Reads the kernel's answers back into `results`.
-void read_trace_records(std::span<const GpuTraceRay> records, std::span<TraceResult> results);
+// The trace kernel's input records for `rays` (GpuTraceRay, or GpuTraceRayF
+// with origins relative to the anchor in a float world), as bytes.
+std::vector<unsigned char> trace_records(const PackedScene& packed, std::span<const TraceQuery> rays);
+// Reads the kernel's answers (records as trace_records made them) back into `results`.
+void read_trace_records(const PackedScene& packed, std::span<const unsigned char> records,
+                        std::span<TraceResult> results);
+// Bytes of one trace record.
+size_t trace_record_bytes(const PackedScene& packed);
 
 inline double ms_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -85,9 +85,12 @@ struct alignas(32) GpuFrame {
   int32_t counts[4];   // objects, bounded objects (the BVH's), lights, nodes
   int32_t flags[4];    // x: aov path wanted, y: trace ray count, z: depth/normal/albedo AOVs wanted
   int32_t cubemap[6][4];  // per face: texel offset, width, height, unused
-  // followed by dvec2 sample_offsets[spp] (offset 352)
+  float anchor[4];        // what a float world's positions are relative to (xyz; zero in a double world)
+  float pad1[4];
+  // followed by dvec2 sample_offsets[spp] (offset 384)
 };
-static_assert(sizeof(GpuFrame) == 352 && offsetof(GpuFrame, ambient) == 160 && offsetof(GpuFrame, cubemap) == 256);
+static_assert(sizeof(GpuFrame) == 384 && offsetof(GpuFrame, ambient) == 160 && offsetof(GpuFrame, cubemap) == 256 &&
+              offsetof(GpuFrame, anchor) == 352);
 
 // The kernel writes normal, depth and albedo only when flags.z asks for them.
 struct alignas(16) GpuPixel {
@@ -112,5 +115,62 @@ struct alignas(32) GpuTraceRay {
   int32_t pad[4];
 };
 static_assert(sizeof(GpuTraceRay) == 128);
+
+// The float world's versions (PRISM_WORLD_FLOAT: gpu/scene.glsl) of the
+// structs that hold world positions or t: every position relative to the
+// scene's anchor, subtracted in double before the rounding to float.
+struct alignas(16) GpuObjectF {
+  float center[4];
+  float columns[3][4];
+  uint32_t record;  // index of the record's first float
+  uint32_t type;
+  uint32_t material;
+  uint32_t rotated;
+  int32_t id;
+  int32_t pad[3];
+};
+static_assert(sizeof(GpuObjectF) == 96 && offsetof(GpuObjectF, record) == 64 && offsetof(GpuObjectF, id) == 80);
+
+struct alignas(16) GpuLightF {
+  float position[4];  // point: position, w radius; directional: unit direction of travel
+  float color[3];
+  float intensity;
+  float linear;
+  float quadratic;
+  uint32_t directional;
+  uint32_t pad;
+};
+static_assert(sizeof(GpuLightF) == 48 && offsetof(GpuLightF, color) == 16);
+
+struct alignas(16) GpuFrameF {
+  float camera_position[4];
+  float camera_forward[4];
+  float camera_right[4];
+  float camera_up[4];
+  float tan_half_fov;
+  float aspect;
+  float pad0[2];
+  float ambient[4];
+  float shadow_ambient[4];
+  float background[4];
+  int32_t size[4];
+  int32_t counts[4];
+  int32_t flags[4];
+  int32_t cubemap[6][4];
+  float anchor[4];
+  float pad1[4];
+  // followed by vec2 sample_offsets[spp] (offset 304)
+};
+static_assert(sizeof(GpuFrameF) == 304 && offsetof(GpuFrameF, ambient) == 80 && offsetof(GpuFrameF, cubemap) == 176 &&
+              offsetof(GpuFrameF, anchor) == 272);
+
+struct alignas(16) GpuTraceRayF {
+  float origin_tmin[4];
+  float dir[4];
+  float t_normal[4];
+  int32_t id[4];
+  int32_t pad[4];
+};
+static_assert(sizeof(GpuTraceRayF) == 80);
 
 }  // namespace prism::gpu

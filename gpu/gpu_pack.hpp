@@ -26,8 +26,8 @@ std::set<Feature> scene_features(const Scene& scene, const PackedScene& packed);
 void pack_objects(const Scene& scene, std::span<const PrismPrimitiveDesc* const> type_order, PackedScene& out);
 // An object's GPU entry; `record` is the index of its record's first double.
 GpuObject object_entry(const Object& object, size_t id, uint32_t type, uint32_t record);
-// A node with its bounds rounded outward to float.
-GpuNode node_entry(const BvhNode& node);
+// A node with its bounds, relative to `anchor`, rounded outward to float.
+GpuNode node_entry(const BvhNode& node, const glm::dvec3& anchor = glm::dvec3(0));
 // The frame's element counts (objects, bounded objects, lights, nodes).
 void set_counts(PackedScene& out);
 

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstring>
+
 #include <limits>
 #include <map>
 #include <stdexcept>
@@ -156,6 +157,7 @@ void pack_objects(const Scene& scene, std::span<const PrismPrimitiveDesc* const>
   out.types = std::move(table.types);
   out.bounded_objects = int(out.bounded_ids.size());
   out.bvh_depth = out.bvh.depth;
+  out.unrolled = out.objects.size() <= kUnrolledObjects;
 }
 
 void pack_textures(const Scene& scene, PackedScene& out) {
@@ -244,11 +246,11 @@ GpuObject object_entry(const Object& object, size_t id, uint32_t type, uint32_t 
   return g;
 }
 
-GpuNode node_entry(const BvhNode& n) {
+GpuNode node_entry(const BvhNode& n, const glm::dvec3& anchor) {
   GpuNode g{};
   for (int a = 0; a < 3; ++a) {
-    g.lo[a] = round_down(n.bounds.lo[a]);
-    g.hi[a] = round_up(n.bounds.hi[a]);
+    g.lo[a] = round_down(n.bounds.lo[a] - anchor[a]);
+    g.hi[a] = round_up(n.bounds.hi[a] - anchor[a]);
   }
   g.first = n.first;
   g.count = n.count;
@@ -294,7 +296,23 @@ PackedScene pack_scene(const Scene& scene, std::span<const PrismPrimitiveDesc* c
   return out;
 }
 
+std::vector<uint32_t> kernel_layout(const PackedScene& packed) {
+  std::vector<uint32_t> layout{uint32_t(packed.lights.size()), packed.unrolled ? 1u : 0u};
+  if (!packed.unrolled) return layout;
+  for (const GpuObject& o : packed.objects) layout.insert(layout.end(), {o.type, o.record, uint32_t(o.id)});
+  return layout;
+}
+
 SceneBuffer scene_buffer(const PackedScene& p, uint32_t binding) {
+  if (p.float_world) {
+    switch (binding) {
+      case kBindRecords: return {p.records_f.data(), p.records_f.size(), sizeof(float), "object records"};
+      case kBindObjects: return {p.objects_f.data(), p.objects_f.size(), sizeof(GpuObjectF), "objects"};
+      case kBindNodes: return {p.nodes_f.data(), p.nodes_f.size(), sizeof(GpuNode), "BVH"};
+      case kBindLights: return {p.lights_f.data(), p.lights_f.size(), sizeof(GpuLightF), "lights"};
+      default: break;
+    }
+  }
   switch (binding) {
     case kBindRecords: return {p.records.data(), p.records.size(), sizeof(double), "object records"};
     case kBindObjects: return {p.objects.data(), p.objects.size(), sizeof(GpuObject), "objects"};
@@ -322,6 +340,108 @@ GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const Render
   f.flags[0] = settings.aov_path ? 1 : 0;
   f.flags[2] = settings.aov_depth || settings.aov_normal || settings.aov_albedo ? 1 : 0;
   return f;
+}
+
+namespace {
+
+void relative4f(const double in[4], const glm::dvec3& anchor, float out[4]) {
+  for (int a = 0; a < 3; ++a) out[a] = float(in[a] - anchor[a]);
+  out[3] = float(in[3]);
+}
+
+void copy4f(const double in[4], float out[4]) {
+  for (int a = 0; a < 4; ++a) out[a] = float(in[a]);
+}
+
+GpuObjectF float_object(const GpuObject& o, const glm::dvec3& anchor) {
+  GpuObjectF f{};
+  relative4f(o.center, anchor, f.center);
+  for (int c = 0; c < 3; ++c) copy4f(o.columns[c], f.columns[c]);
+  f.record = o.record;
+  f.type = o.type;
+  f.material = o.material;
+  f.rotated = o.rotated;
+  f.id = o.id;
+  return f;
+}
+
+GpuLightF float_light(const GpuLight& l, const glm::dvec3& anchor) {
+  GpuLightF f{};
+  if (l.directional) copy4f(l.position, f.position);
+  else relative4f(l.position, anchor, f.position);
+  std::copy_n(l.color, 3, f.color);
+  f.intensity = l.intensity;
+  f.linear = l.linear;
+  f.quadratic = l.quadratic;
+  f.directional = l.directional;
+  return f;
+}
+
+GpuFrameF float_frame(const GpuFrame& g, const glm::dvec3& anchor) {
+  GpuFrameF f{};
+  relative4f(g.camera_position, anchor, f.camera_position);
+  copy4f(g.camera_forward, f.camera_forward);
+  copy4f(g.camera_right, f.camera_right);
+  copy4f(g.camera_up, f.camera_up);
+  f.tan_half_fov = float(g.tan_half_fov);
+  f.aspect = float(g.aspect);
+  std::copy_n(g.ambient, 4, f.ambient);
+  std::copy_n(g.shadow_ambient, 4, f.shadow_ambient);
+  std::copy_n(g.background, 4, f.background);
+  std::copy_n(g.size, 4, f.size);
+  std::copy_n(g.counts, 4, f.counts);
+  std::copy_n(g.flags, 4, f.flags);
+  std::memcpy(f.cubemap, g.cubemap, sizeof f.cubemap);
+  std::copy_n(g.anchor, 4, f.anchor);
+  return f;
+}
+
+}  // namespace
+
+void refresh_float_world(PackedScene& p) {
+  if (!p.float_world) return;
+  p.records_f.assign(p.records.begin(), p.records.end());
+  p.objects_f.clear();
+  for (const GpuObject& o : p.objects) p.objects_f.push_back(float_object(o, p.anchor));
+  p.nodes_f.clear();
+  for (const BvhNode& n : p.bvh.nodes) p.nodes_f.push_back(detail::node_entry(n, p.anchor));
+  p.lights_f.clear();
+  for (const GpuLight& l : p.lights) p.lights_f.push_back(float_light(l, p.anchor));
+}
+
+void set_world(PackedScene& p, bool float_world, const glm::dvec3& anchor) {
+  p.float_world = float_world;
+  p.anchor = float_world ? anchor : glm::dvec3(0);
+  for (int a = 0; a < 3; ++a) p.frame.anchor[a] = float(p.anchor[a]);
+  if (float_world) {
+    refresh_float_world(p);
+  } else {
+    p.records_f.clear();
+    p.objects_f.clear();
+    p.nodes_f.clear();
+    p.lights_f.clear();
+  }
+}
+
+std::vector<unsigned char> frame_bytes(const PackedScene& packed, const GpuFrame& frame,
+                                       const std::vector<glm::dvec2>& offsets) {
+  std::vector<unsigned char> bytes;
+  const auto append = [&](const void* data, size_t n) {
+    const auto* b = static_cast<const unsigned char*>(data);
+    bytes.insert(bytes.end(), b, b + n);
+  };
+  if (!packed.float_world) {
+    append(&frame, sizeof frame);
+    append(offsets.data(), offsets.size() * sizeof(glm::dvec2));
+    return bytes;
+  }
+  const GpuFrameF f = float_frame(frame, packed.anchor);
+  append(&f, sizeof f);
+  for (const glm::dvec2& o : offsets) {
+    const float pair[2] = {float(o.x), float(o.y)};
+    append(pair, sizeof pair);
+  }
+  return bytes;
 }
 
 std::vector<glm::dvec2> sample_offsets(int spp) {

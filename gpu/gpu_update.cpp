@@ -101,6 +101,23 @@ void repack_objects(PackedScene& p, const Scene& scene, PackedUpdate& u) {
   u.bvh_refitted = false;
 }
 
+// A float world's copies made again; its nodes are rounded from their own
+// relative bounds, so the nodes sent are the float ones that changed.
+void refresh_float_nodes(PackedScene& p, BufferWrites& nodes) {
+  if (!p.float_world) return;
+  const std::vector<GpuNode> before = p.nodes_f;
+  refresh_float_world(p);
+  if (nodes.whole) return;
+  if (before.size() != p.nodes_f.size()) {
+    nodes.whole = true;
+    return;
+  }
+  std::vector<size_t> differ;
+  for (size_t n = 0; n < before.size(); ++n)
+    if (std::memcmp(&before[n], &p.nodes_f[n], sizeof(GpuNode)) != 0) differ.push_back(n);
+  nodes.runs = runs_of(std::move(differ));
+}
+
 }  // namespace
 
 std::vector<Range> runs_of(std::vector<size_t> indices) {
@@ -144,6 +161,7 @@ void count_update(BackendStats& stats, const PackedUpdate& update) {
 
 PackedUpdate update_packed_scene(PackedScene& p, const Scene& scene, const SceneChanges& changes) {
   PackedUpdate u;
+  const std::vector<uint32_t> layout_before = kernel_layout(p);
   if (changes.textures) {
     detail::pack_textures(scene, p);
     u.buffers[kBindTexels].whole = true;
@@ -155,8 +173,9 @@ PackedUpdate update_packed_scene(PackedScene& p, const Scene& scene, const Scene
   if (changes.objects_added_or_removed || !update_in_place(p, scene, changes.objects, u)) repack_objects(p, scene, u);
   detail::set_counts(p);
   std::set<Feature> features = detail::scene_features(scene, p);
-  u.kernel = u.kernel || features != p.features;
+  u.kernel = u.kernel || features != p.features || kernel_layout(p) != layout_before;
   p.features = std::move(features);
+  refresh_float_nodes(p, u.buffers[kBindNodes]);
   return u;
 }
 

@@ -26,10 +26,6 @@ struct KernelOptions {
   std::string api_glue;
   int local_size_x = 8;
   int local_size_y = 8;
-  // The plugins' intersectors and surfaces in float (PRISM_REAL_FLOAT): each
-  // object's local ray is computed in double and rounded, the hit's t and
-  // surface widened back; world positions, t and shading stay double.
-  bool float_primitives = false;
 };
 
 struct KernelSource {

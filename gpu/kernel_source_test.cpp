@@ -77,19 +77,24 @@ TEST(KernelSource, RenderKernelHasShadingSection) {
   EXPECT_NE(kernel.text.find("===== gpu/shading.glsl"), std::string::npos);
 }
 
-// --precision float: the plugins' float instantiation, defined before the
-// prelude reads it; the double kernel does not define it.
-TEST(KernelSource, FloatPrimitivesDefineRealFloatBeforeThePrelude) {
+// A float world: the world and the plugins' float instantiation, defined
+// before the prelude reads them; a double world defines neither.
+TEST(KernelSource, FloatWorldDefinesRealFloatBeforeThePrelude) {
   Registry registry;
   Scene scene = load(registry, kSpheresOnly);
-  KernelOptions options;
-  options.float_primitives = true;
-  const std::string text = generate_kernel(pack_scene(scene), options).text;
-  const size_t define = text.find("#define PRISM_REAL_FLOAT 1"), prelude = text.find("===== core/glsl/prelude.glsl");
-  ASSERT_NE(define, std::string::npos);
+  PackedScene packed = pack_scene(scene);
+  set_world(packed, true, glm::dvec3(1, 2, 3));
+  const std::string text = generate_kernel(packed, KernelOptions{}).text;
+  const size_t prelude = text.find("===== core/glsl/prelude.glsl");
   ASSERT_NE(prelude, std::string::npos);
-  EXPECT_LT(define, prelude);
-  EXPECT_EQ(generate_kernel(pack_scene(scene), KernelOptions{}).text.find("PRISM_REAL_FLOAT 1"), std::string::npos);
+  for (const char* define : {"#define PRISM_REAL_FLOAT 1", "#define PRISM_WORLD_FLOAT 1"}) {
+    ASSERT_NE(text.find(define), std::string::npos) << define;
+    EXPECT_LT(text.find(define), prelude) << define;
+  }
+  set_world(packed, false);
+  const std::string double_text = generate_kernel(packed, KernelOptions{}).text;
+  EXPECT_EQ(double_text.find("PRISM_REAL_FLOAT 1"), std::string::npos);
+  EXPECT_EQ(double_text.find("PRISM_WORLD_FLOAT 1"), std::string::npos);
 }
 
 // A plugin whose GLSL is not in the shared dialect has no float
@@ -103,17 +108,16 @@ TEST(KernelSource, FloatKernelNamesAPluginWithoutAFloatInstantiation) {
   PrismPrimitiveDesc double_only = *packed.types[0];
   double_only.intersect_float = double_only.intersect;
   packed.types[0] = &double_only;
-  KernelOptions options;
-  options.float_primitives = true;
+  set_world(packed, true, glm::dvec3(0));
   try {
-    generate_kernel(packed, options);
+    generate_kernel(packed, KernelOptions{});
     FAIL() << "a float kernel was generated";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("primitive plugin 'sphere' has no float instantiation"), std::string::npos)
         << e.what();
   }
-  options.float_primitives = false;
-  EXPECT_NO_THROW(generate_kernel(packed, options));
+  set_world(packed, false);
+  EXPECT_NO_THROW(generate_kernel(packed, KernelOptions{}));
 }
 
 // The one parser of `// prism:require` lines (kernel generator,

@@ -5,14 +5,63 @@
 // OpenGL and Vulkan backends; the kernel generator places it after the
 // plugins' intersectors and the generated prism_intersect_type /
 // prism_surface_type dispatch.
+//
+// World precision: positions, directions and t are `wreal`: double, or float
+// in a float kernel (PRISM_WORLD_FLOAT, which also makes every plugin's
+// `real` float), where every position is relative to the scene's anchor (the
+// camera), subtracted in double on the host before rounding: a float kernel
+// holds no double at all, and runs on a device without shaderFloat64.
+#ifdef PRISM_WORLD_FLOAT
+#define wreal float
+#define wvec2 vec2
+#define wvec3 vec3
+#define wvec4 vec4
+#define WL(x) x
+#define PRISM_OFFSET_SCALE 1e-4
+#else
+#define wreal double
+#define wvec2 dvec2
+#define wvec3 dvec3
+#define wvec4 dvec4
+// glslang pastes no tokens onto float literals: the conversion is exact for
+// every WL literal (small dyadic numbers); the spec's offset scale is not one.
+#define WL(x) double(x)
+#define PRISM_OFFSET_SCALE 1e-4LF
+#endif
+
+// +infinity in world precision.
+wreal prism_winf() {
+#ifdef PRISM_WORLD_FLOAT
+  return uintBitsToFloat(0x7f800000u);
+#else
+  return packDouble2x32(uvec2(0u, 0x7ff00000u));
+#endif
+}
 
 struct PrismObject {
-  dvec4 center;
-  dvec4 columns[3];  // R, local -> world
+  wvec4 center;
+  wvec4 columns[3];  // R, local -> world
   uvec4 info;        // record, type, material, rotated
   ivec4 id;          // x: object id
 };
 layout(std430, binding = PRISM_BINDING_OBJECTS) readonly buffer PrismObjectBuffer { PrismObject prism_objects[]; };
+
+// Caches. A scene small enough to be unrolled (PRISM_UNROLLED_OBJECTS) has
+// its objects and their records, and a scene of a few lights its lights,
+// read once at the kernel's start (prism_fill_caches, generated) into these
+// copies, which every test then reads at fixed indices: inside a loop
+// llvmpipe and lavapipe read a buffer with a bounds check and a branch per
+// number even at a fixed offset, several times what the arithmetic of an
+// object test costs. The copies are made before the kernel's first branch,
+// where every lane is known to run: a copy made under a mask is no longer
+// one value for all lanes to the driver's compiler (measured: 1.3x the
+// cost of a whole frame).
+#ifdef PRISM_UNROLLED_OBJECTS
+PrismObject prism_object_cache[PRISM_OBJECT_COUNT];
+#define PRISM_OBJECT(i) prism_object_cache[i]
+#else
+#define PRISM_OBJECT(i) prism_objects[i]
+#endif
 
 struct PrismNode {
   vec3 lo;
@@ -32,7 +81,7 @@ struct PrismMaterial {
 layout(std430, binding = PRISM_BINDING_MATERIALS) readonly buffer PrismMaterialBuffer { PrismMaterial prism_materials[]; };
 
 struct PrismLight {
-  dvec4 position;  // point: position, radius; directional: direction
+  wvec4 position;  // point: position, radius; directional: direction
   vec4 color_intensity;
   vec2 attenuation;  // linear, quadratic
   uint directional;
@@ -40,18 +89,37 @@ struct PrismLight {
 };
 layout(std430, binding = PRISM_BINDING_LIGHTS) readonly buffer PrismLightBuffer { PrismLight prism_lights[]; };
 
+// Light k (< PRISM_LIGHT_COUNT, which the generator defines): up to
+// PRISM_LIGHTS_BY_CONSTANT lights, chosen from the cache by comparisons
+// (no lane reads memory), else read lane by lane.
+#if PRISM_LIGHT_COUNT > 0 && PRISM_LIGHT_COUNT <= PRISM_LIGHTS_BY_CONSTANT
+#define PRISM_CACHED_LIGHTS 1
+PrismLight prism_light_cache[PRISM_LIGHT_COUNT];
+#endif
+
+PrismLight prism_light(int k) {
+#ifdef PRISM_CACHED_LIGHTS
+  PrismLight light = prism_light_cache[0];
+  for (int j = 1; j < PRISM_LIGHT_COUNT; ++j)
+    if (k == j) light = prism_light_cache[j];
+  return light;
+#else
+  return prism_lights[k];
+#endif
+}
+
 #if defined(PRISM_FEATURE_TEXTURES) || defined(PRISM_FEATURE_SKYBOX)
 layout(std430, binding = PRISM_BINDING_TEXELS) readonly buffer PrismTexelBuffer { vec4 prism_texels[]; };
 #endif
 
 layout(std430, binding = PRISM_BINDING_FRAME) readonly buffer PrismFrameBuffer {
-  dvec4 camera_position;
-  dvec4 camera_forward;
-  dvec4 camera_right;
-  dvec4 camera_up;
-  double tan_half_fov;
-  double aspect;
-  double pad0[2];
+  wvec4 camera_position;
+  wvec4 camera_forward;
+  wvec4 camera_right;
+  wvec4 camera_up;
+  wreal tan_half_fov;
+  wreal aspect;
+  wreal pad0[2];
   vec4 ambient;
   vec4 shadow_ambient;
   vec4 background;
@@ -59,14 +127,16 @@ layout(std430, binding = PRISM_BINDING_FRAME) readonly buffer PrismFrameBuffer {
   ivec4 counts;  // objects, bounded objects, lights, BVH nodes
   ivec4 flags;   // x: path AOV wanted, y: trace ray count, z: depth/normal/albedo AOVs wanted
   ivec4 cubemap[6];
-  dvec2 sample_offsets[];
+  vec4 anchor;  // a float world's positions are relative to it (zero in a double world)
+  vec4 pad1;
+  wvec2 sample_offsets[];
 } prism_frame;
 
 const int PRISM_MISS_ID = -1;
 
 // The closest hit so far; `object` indexes prism_objects.
 struct PrismClosest {
-  double t;
+  wreal t;
   int id;  // object id, -2-k for light k's sphere, -1 for none
   uint object;
   PrismHit hit;
@@ -74,15 +144,18 @@ struct PrismClosest {
 
 PrismClosest prism_no_hit() {
   PrismClosest c;
-  c.t = prism_inf();
+  c.t = prism_winf();
   c.id = PRISM_MISS_ID;
   c.object = 0u;
   prism_clear_hit(c.hit);
   return c;
 }
 
-// The largest double below x (x > 0): `t < x` as an inclusive bound.
-double prism_next_below(double x) {
+// The largest wreal below x (x > 0): `t < x` as an inclusive bound.
+wreal prism_next_below(wreal x) {
+#ifdef PRISM_WORLD_FLOAT
+  return uintBitsToFloat(floatBitsToUint(x) - 1u);
+#else
   uvec2 bits = unpackDouble2x32(x);
   if (bits.x == 0u) {
     bits.x = 0xffffffffu;
@@ -91,36 +164,50 @@ double prism_next_below(double x) {
     bits.x -= 1u;
   }
   return packDouble2x32(bits);
+#endif
 }
 
-// A ray in world space (double whatever `real` is: the kernel's positions
-// and t), and a hit's world point, outward unit normal and uv.
+// A ray in world space (world precision whatever `real` is: the kernel's
+// positions and t), and a hit's world point, outward unit normal and uv.
 struct PrismWorldRay {
-  dvec3 origin;
-  dvec3 dir;
+  wvec3 origin;
+  wvec3 dir;
 };
 
 struct PrismWorldSurface {
-  dvec3 point;
-  dvec3 normal;
-  dvec2 uv;
+  wvec3 point;
+  wvec3 normal;
+  wvec2 uv;
 };
 
 // A world ray in object i's local frame (rotations keep t), as the plugins
-// take it: computed in double, then rounded to `real` (a float kernel's
-// plugins intersect in float after the re-centring in double).
+// take it: computed in world precision, then rounded to `real` (the plugins
+// of a double kernel with --precision float intersect in float after the
+// re-centring in double).
 PrismRay prism_to_local(uint i, PrismWorldRay ray) {
-  dvec3 o = ray.origin - prism_objects[i].center.xyz;
+  wvec3 o = ray.origin - PRISM_OBJECT(i).center.xyz;
+  // Always rotated, the identity for an object without rotation (exact: a
+  // dot with a unit axis is that component): a branch would cost more on a
+  // driver that runs both sides of it than the nine products do.
+  wvec3 c0 = PRISM_OBJECT(i).columns[0].xyz, c1 = PRISM_OBJECT(i).columns[1].xyz, c2 = PRISM_OBJECT(i).columns[2].xyz;
   PrismRay local;
-  if (prism_objects[i].info.w == 0u) {
-    local.origin = real3(o);
-    local.dir = real3(ray.dir);
-    return local;
-  }
-  dvec3 c0 = prism_objects[i].columns[0].xyz, c1 = prism_objects[i].columns[1].xyz, c2 = prism_objects[i].columns[2].xyz;
-  local.origin = real3(dvec3(dot(c0, o), dot(c1, o), dot(c2, o)));
-  local.dir = real3(dvec3(dot(c0, ray.dir), dot(c1, ray.dir), dot(c2, ray.dir)));
+  local.origin = real3(wvec3(dot(c0, o), dot(c1, o), dot(c2, o)));
+  local.dir = real3(wvec3(dot(c0, ray.dir), dot(c1, ray.dir), dot(c2, ray.dir)));
   return local;
+}
+
+// A plugin's local surface on object i in the world: point, outward unit
+// normal (-dir where undefined) and uv.
+PrismWorldSurface prism_to_world(uint i, PrismWorldRay ray, PrismSurface local) {
+  wvec3 point = wvec3(local.point), normal = wvec3(local.normal);
+  wvec3 c0 = PRISM_OBJECT(i).columns[0].xyz, c1 = PRISM_OBJECT(i).columns[1].xyz, c2 = PRISM_OBJECT(i).columns[2].xyz;
+  PrismWorldSurface s;
+  s.uv = wvec2(local.uv);
+  s.point = PRISM_OBJECT(i).center.xyz + (c0 * point.x + c1 * point.y + c2 * point.z);
+  normal = c0 * normal.x + c1 * normal.y + c2 * normal.z;
+  wreal len = length(normal);
+  s.normal = (len > WL(0.0) && !isinf(len) && !isnan(len)) ? normal / len : -ray.dir;
+  return s;
 }
 
 // A world ray in object i's local frame is tested by one call of the
@@ -130,43 +217,72 @@ PrismRay prism_to_local(uint i, PrismWorldRay ray) {
 
 // 1/d with zero components replaced by a huge finite value, so the slab test
 // never forms 0 * inf.
-dvec3 prism_inverse_dir(dvec3 d) {
+wvec3 prism_inverse_dir(wvec3 d) {
+#ifdef PRISM_WORLD_FLOAT
+  const float huge = 1e30;
+#else
   const double huge = 1e300LF;
-  return dvec3(d.x != 0.0LF ? 1.0LF / d.x : huge, d.y != 0.0LF ? 1.0LF / d.y : huge,
-               d.z != 0.0LF ? 1.0LF / d.z : huge);
+#endif
+  return wvec3(d.x != WL(0.0) ? WL(1.0) / d.x : huge, d.y != WL(0.0) ? WL(1.0) / d.y : huge,
+               d.z != WL(0.0) ? WL(1.0) / d.z : huge);
 }
 
-// Slab test in double against a float box; tfar is widened by a few ulps so
-// rounding never drops a hit on the box's face.
-bool prism_enter_node(uint node, dvec3 o, dvec3 inv, double tmin, double tmax, out double tnear) {
-  dvec3 t0 = (dvec3(prism_nodes[node].lo) - o) * inv;
-  dvec3 t1 = (dvec3(prism_nodes[node].hi) - o) * inv;
-  dvec3 near3 = min(t0, t1), far3 = max(t0, t1);
+// Slab test in world precision against a float box; tfar is widened by a
+// few ulps so rounding never drops a hit on the box's face.
+bool prism_enter_node(uint node, wvec3 o, wvec3 inv, wreal tmin, wreal tmax, out wreal tnear) {
+  wvec3 t0 = (wvec3(prism_nodes[node].lo) - o) * inv;
+  wvec3 t1 = (wvec3(prism_nodes[node].hi) - o) * inv;
+  wvec3 near3 = min(t0, t1), far3 = max(t0, t1);
   tnear = max(max(near3.x, near3.y), max(near3.z, tmin));
-  double tfar = min(min(far3.x, far3.y), min(far3.z, tmax)) * 1.0000000000000009LF;
+#ifdef PRISM_WORLD_FLOAT
+  wreal tfar = min(min(far3.x, far3.y), min(far3.z, tmax)) * 1.0000005;
+#else
+  wreal tfar = min(min(far3.x, far3.y), min(far3.z, tmax)) * 1.0000000000000009LF;
+#endif
   return tnear <= tfar;
 }
 
 #define PRISM_BVH_STACK 64
 
+// A hit `h` on object `id` (in slot `slot`) that an intersector found: into
+// `best` when it is the closest so far (ties: the format's rule, lower
+// object id at equal t); true for an any-hit query, which stops there.
+bool prism_take_hit(bool any_hit, int id, uint slot, PrismHit h, inout PrismClosest best) {
+  if (any_hit) return true;
+  if (wreal(h.t) < best.t || id < best.id) {
+    best.t = wreal(h.t);
+    best.id = id;
+    best.object = slot;
+    best.hit = h;
+  }
+  return false;
+}
+
+#ifdef PRISM_UNROLLED_OBJECTS
+
+// Every object in turn, each with its slot and record as constants (the
+// generator writes it after this file): a driver that runs every lane
+// through the same code reads the objects' data at fixed offsets, once for
+// all lanes, instead of gathering it lane by lane (docs/architecture.md,
+// "Objects unrolled").
+bool prism_test_every_object(PrismWorldRay ray, wreal tmin, wreal tmax, bool any_hit, inout PrismClosest best);
+
+bool prism_traverse(PrismWorldRay ray, wreal tmin, wreal tmax, bool any_hit, inout PrismClosest best) {
+  return prism_test_every_object(ray, tmin, tmax, any_hit, best);
+}
+
+#else
+
 // Tests objects first .. first + count - 1: the closest hit with t > tmin
-// into `best` (ties: the format's rule, lower object id at equal t), or, when
-// `any_hit`, true as soon as one lies at tmin < t <= tmax.
-bool prism_test_objects(uint first, uint count, PrismWorldRay ray, double tmin, double tmax, bool any_hit,
+// into `best`, or, when `any_hit`, true as soon as one lies at tmin < t <= tmax.
+bool prism_test_objects(uint first, uint count, PrismWorldRay ray, wreal tmin, wreal tmax, bool any_hit,
                         inout PrismClosest best) {
   for (uint i = first; i < first + count; ++i) {
     PrismHit h;
     uvec4 info = prism_objects[i].info;
-    if (!prism_intersect_type(info.y, info.x, prism_to_local(i, ray), real(tmin), real(any_hit ? tmax : best.t), h))
-      continue;
-    if (any_hit) return true;
-    int id = prism_objects[i].id.x;
-    if (double(h.t) < best.t || id < best.id) {
-      best.t = double(h.t);
-      best.id = id;
-      best.object = i;
-      best.hit = h;
-    }
+    if (prism_intersect_type(info.y, info.x, prism_to_local(i, ray), real(tmin), real(any_hit ? tmax : best.t), h) &&
+        prism_take_hit(any_hit, prism_objects[i].id.x, i, h, best))
+      return true;
   }
   return false;
 }
@@ -174,12 +290,12 @@ bool prism_test_objects(uint first, uint count, PrismWorldRay ray, double tmin, 
 // Closest object hit or any hit (see prism_test_objects): the leaves a BVH
 // walk reaches, nearest child first, then the unbounded objects (planes,
 // unclipped quadrics).
-bool prism_traverse(PrismWorldRay ray, double tmin, double tmax, bool any_hit, inout PrismClosest best) {
-  dvec3 inv = prism_inverse_dir(ray.dir);
+bool prism_traverse(PrismWorldRay ray, wreal tmin, wreal tmax, bool any_hit, inout PrismClosest best) {
+  wvec3 inv = prism_inverse_dir(ray.dir);
   uint stack[PRISM_BVH_STACK];
   int top = 0;
   uint node = 0u;
-  double tnear;
+  wreal tnear;
   bool visit = prism_frame.counts.w > 0 && prism_enter_node(0u, ray.origin, inv, tmin, any_hit ? tmax : best.t, tnear);
   bool unbounded_done = false;
   for (;;) {
@@ -197,7 +313,7 @@ bool prism_traverse(PrismWorldRay ray, double tmin, double tmax, bool any_hit, i
         visit = false;
         break;
       }
-      double limit = any_hit ? tmax : best.t, tl, tr;
+      wreal limit = any_hit ? tmax : best.t, tl, tr;
       bool left = prism_enter_node(node_first, ray.origin, inv, tmin, limit, tl);
       bool right = prism_enter_node(node_first + 1u, ray.origin, inv, tmin, limit, tr);
       if (left && right) {
@@ -221,21 +337,24 @@ bool prism_traverse(PrismWorldRay ray, double tmin, double tmax, bool any_hit, i
   return false;
 }
 
+#endif
+
 // Closest hit with t > tmin over objects and visible light spheres; objects
 // win ties with light spheres, lower light index wins among lights.
-PrismClosest prism_closest(PrismWorldRay ray, double tmin) {
+PrismClosest prism_closest(PrismWorldRay ray, wreal tmin) {
   PrismClosest best = prism_no_hit();
-  prism_traverse(ray, tmin, 0.0LF, false, best);
+  prism_traverse(ray, tmin, WL(0.0), false, best);
 #ifdef PRISM_FEATURE_LIGHT_SPHERES
-  double limit = best.t;
-  for (int k = 0; k < prism_frame.counts.z; ++k) {
-    double radius = prism_lights[k].position.w;
-    if (prism_lights[k].directional != 0u || !(radius > 0.0LF)) continue;
+  wreal limit = best.t;
+  for (int k = 0; k < PRISM_LIGHT_COUNT; ++k) {
+    PrismLight light = prism_light(k);
+    wreal radius = light.position.w;
+    if (light.directional != 0u || !(radius > WL(0.0))) continue;
     real t;
-    if (prism_intersect_sphere(real3(ray.origin - prism_lights[k].position.xyz), real3(ray.dir), real(radius),
+    if (prism_intersect_sphere(real3(ray.origin - light.position.xyz), real3(ray.dir), real(radius),
                                real(tmin), real(limit), t) &&
-        double(t) < best.t) {
-      best.t = double(t);
+        wreal(t) < best.t) {
+      best.t = wreal(t);
       best.id = -2 - k;
     }
   }
@@ -244,26 +363,30 @@ PrismClosest prism_closest(PrismWorldRay ray, double tmin) {
 }
 
 // True when an object lies at 0 < t < tmax (light spheres never block).
-bool prism_occluded(PrismWorldRay ray, double tmax) {
+bool prism_occluded(PrismWorldRay ray, wreal tmax) {
   PrismClosest unused = prism_no_hit();
-  return prism_traverse(ray, 0.0LF, prism_next_below(tmax), true, unused);
+  return prism_traverse(ray, WL(0.0), prism_next_below(tmax), true, unused);
 }
 
-// World point, outward unit normal (-dir where undefined) and uv of a hit.
+#ifndef PRISM_UNROLLED_OBJECTS
+
+// World point, outward unit normal (-dir where undefined) and uv of a hit,
+// and the material of the object hit. (Unrolled, the generator writes them
+// object by object, with constant slots, records and materials.)
 PrismWorldSurface prism_world_surface(PrismWorldRay ray, PrismClosest c) {
   PrismSurface local;
   uint i = c.object;
   prism_surface_type(prism_objects[i].info.y, prism_objects[i].info.x, prism_to_local(i, ray), c.hit, local);
-  dvec3 point = dvec3(local.point), normal = dvec3(local.normal);
-  PrismWorldSurface s;
-  s.uv = dvec2(local.uv);
-  if (prism_objects[i].info.w != 0u) {
-    dvec3 c0 = prism_objects[i].columns[0].xyz, c1 = prism_objects[i].columns[1].xyz, c2 = prism_objects[i].columns[2].xyz;
-    point = c0 * point.x + c1 * point.y + c2 * point.z;
-    normal = c0 * normal.x + c1 * normal.y + c2 * normal.z;
-  }
-  s.point = prism_objects[i].center.xyz + point;
-  double len = length(normal);
-  s.normal = (len > 0.0LF && !isinf(len) && !isnan(len)) ? normal / len : -ray.dir;
-  return s;
+  return prism_to_world(i, ray, local);
 }
+
+#else
+
+PrismWorldSurface prism_world_surface(PrismWorldRay ray, PrismClosest c);
+
+#endif
+
+// The material of the object hit, read lane by lane (measured: cheaper here
+// than choosing among cached materials by comparisons, for a material of
+// twenty numbers).
+uint prism_hit_material(PrismClosest c) { return prism_objects[c.object].info.z; }

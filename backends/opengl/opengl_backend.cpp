@@ -16,6 +16,7 @@
 #include "gl_program.hpp"
 #include "gpu_dispatch.hpp"
 #include "gpu_limits.hpp"
+#include "precision.hpp"
 #include "gpu_scene.hpp"
 #include "gpu_update.hpp"
 #include "kernel_source.hpp"
@@ -84,19 +85,32 @@ class OpenGLBackend : public Backend {
  public:
   OpenGLBackend() : context_(std::make_unique<gl::EglContext>()) {
     stats_.info[info_key::kDevice] = context_->description();
-    stats_.info[info_key::kPrecision] = gpu::precision_description(false);
     gpu::start_counters(stats_);
   }
 
+  // A prepared scene is packed again in the world the new precision asks for.
   void set_precision(Precision precision) override {
-    const bool wanted = gpu::float_primitives_for(precision);
-    if (wanted == float_primitives_) return;
-    float_primitives_ = wanted;
-    stats_.info[info_key::kPrecision] = gpu::precision_description(wanted);
-    if (state_) {
-      gl::EglContext::Current current(*context_);
-      state_->drop_programs();
-    }
+    if (precision == precision_) return;
+    precision_ = precision;
+    if (state_ && scene_) prepare(*scene_);
+  }
+
+  // A float world for `trace` is anchored where its rays start.
+  void anchor_at(std::span<const TraceQuery> rays) {
+    if (!state_->packed.float_world) return;
+    const glm::dvec3 anchor = gpu::trace_anchor(rays);
+    if (anchor == state_->packed.anchor) return;
+    trace_anchor_ = anchor;
+    prepare(*scene_);
+  }
+
+  // `prism trace` asks for arbitrary rays, a render for the camera's: with
+  // automatic precision the two may want different worlds (gpu/precision.hpp).
+  void use_world_for(bool tracing) {
+    if (tracing == tracing_) return;
+    tracing_ = tracing;
+    if (state_ && scene_ && gpu::choose_world(*scene_, precision_, tracing).float_world != state_->packed.float_world)
+      prepare(*scene_);
   }
 
   ~OpenGLBackend() override {
@@ -111,6 +125,11 @@ class OpenGLBackend : public Backend {
     state_.reset();
     auto state = std::make_unique<GpuState>();
     state->packed = gpu::pack_scene(scene);
+    gpu::WorldChoice world = gpu::choose_world(scene, precision_, tracing_);
+    if (world.float_world && tracing_ && trace_anchor_) world.anchor = *trace_anchor_;
+    gpu::set_world(state->packed, world.float_world, world.anchor);
+    stats_.info[info_key::kPrecision] = world.description;
+    stats_.info[info_key::kPrecisionObjects] = world.objects;
     const gpu::PackedScene& p = state->packed;
     check_limits(p, scene.source);
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) {
@@ -150,6 +169,7 @@ class OpenGLBackend : public Backend {
   }
 
   Image render(const RenderSettings& settings) override {
+    use_world_for(false);
     gl::EglContext::Current current(*context_);
     GLuint program = program_for(false);
     auto start = std::chrono::steady_clock::now();
@@ -189,6 +209,8 @@ class OpenGLBackend : public Backend {
   }
 
   std::vector<TraceResult> trace(std::span<const TraceQuery> rays) override {
+    use_world_for(true);
+    anchor_at(rays);
     gl::EglContext::Current current(*context_);
     GLuint program = program_for(true);
     auto start = std::chrono::steady_clock::now();
@@ -202,16 +224,16 @@ class OpenGLBackend : public Backend {
       const size_t n = std::min(kTraceRaysPerDispatch, rays.size() - first);
       frame.flags[1] = int32_t(n);
       gl::Buffer frame_buffer = frame_buffer_for(frame, {});
-      std::vector<GpuTraceRay> io = gpu::trace_records(rays.subspan(first, n));
+      std::vector<unsigned char> io = gpu::trace_records(state_->packed, rays.subspan(first, n));
       gl::Buffer io_buffer = buffer_of(io);
       frame_buffer.bind(gpu::kBindFrame);
       io_buffer.bind(gpu::kBindOutput);
       glUniform4i(0, 0, 0, 0, 0);
       glDispatchCompute(GLuint((n + kTraceLocalSize - 1) / kTraceLocalSize), 1, 1);
       glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      io_buffer.read(0, n * sizeof(GpuTraceRay), io.data());
+      io_buffer.read(0, io.size(), io.data());
       check_gl("tracing");
-      gpu::read_trace_records(io, std::span(results).subspan(first, n));
+      gpu::read_trace_records(state_->packed, io, std::span(results).subspan(first, n));
     }
     stats_.rays += rays.size();
     stats_.rays_by_kind[ray_kind::kTrace] += rays.size();
@@ -236,7 +258,7 @@ class OpenGLBackend : public Backend {
     if (!state_) throw RuntimeError("opengl backend: render or trace before prepare");
     GLuint& program = trace ? state_->trace_program : state_->render_program;
     if (program) return program;
-    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, gpu::kernel_options(trace, kApiGlue, float_primitives_));
+    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, gpu::kernel_options(trace, kApiGlue));
     gl::ProgramStats build;
     program = gl::build_program(kernel.text, context_->driver_identity(), build);
     auto start = std::chrono::steady_clock::now();
@@ -268,14 +290,16 @@ class OpenGLBackend : public Backend {
     check_gl("kernel warm-up");
   }
 
-  static gl::Buffer frame_buffer_for(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets) {
-    const std::vector<unsigned char> bytes = gpu::frame_bytes(frame, offsets);
+  gl::Buffer frame_buffer_for(const GpuFrame& frame, const std::vector<glm::dvec2>& offsets) const {
+    const std::vector<unsigned char> bytes = gpu::frame_bytes(state_->packed, frame, offsets);
     return gl::Buffer(bytes.data(), bytes.size());
   }
 
   std::unique_ptr<gl::EglContext> context_;
   std::unique_ptr<GpuState> state_;
-  bool float_primitives_ = false;  // --precision float
+  Precision precision_ = Precision::automatic;
+  bool tracing_ = false;  // the prepared world is for `trace`
+  std::optional<glm::dvec3> trace_anchor_;  // a float world's anchor for `trace`: its rays' origins
   const Scene* scene_ = nullptr;
   BackendStats stats_;
 };

@@ -13,6 +13,7 @@
 
 #include "gpu_dispatch.hpp"
 #include "gpu_limits.hpp"
+#include "precision.hpp"
 #include "gpu_scene.hpp"
 #include "gpu_update.hpp"
 #include "kernel_source.hpp"
@@ -60,19 +61,36 @@ class VulkanBackend : public Backend {
         commands_(std::make_unique<vk::Commands>(*context_)),
         layout_(std::make_unique<vk::PipelineLayout>(*context_)) {
     stats_.info[info_key::kDevice] = context_->description();
-    stats_.info[info_key::kPrecision] = gpu::precision_description(false);
     stats_.info[info_key::kValidation] = context_->validation() ? "on" : "off";
     stats_.counters[counter::kMaxStorageBufferBytes] = double(context_->properties().limits.maxStorageBufferRange);
     gpu::start_counters(stats_);
     create_descriptor_pool();
   }
 
+  // A prepared scene is packed again in the world the new precision asks for.
   void set_precision(Precision precision) override {
-    const bool wanted = gpu::float_primitives_for(precision);
-    if (wanted == float_primitives_) return;
-    float_primitives_ = wanted;
-    stats_.info[info_key::kPrecision] = gpu::precision_description(wanted);
-    if (scene_) drop_pipelines();
+    if (precision == precision_) return;
+    precision_ = precision;
+    if (scene_ && scene_model_) prepare(*scene_model_);
+  }
+
+  // A float world for `trace` is anchored where its rays start.
+  void anchor_at(std::span<const TraceQuery> rays) {
+    if (!scene_->packed.float_world) return;
+    const glm::dvec3 anchor = gpu::trace_anchor(rays);
+    if (anchor == scene_->packed.anchor) return;
+    trace_anchor_ = anchor;
+    prepare(*scene_model_);
+  }
+
+  // `prism trace` asks for arbitrary rays, a render for the camera's: with
+  // automatic precision the two may want different worlds (gpu/precision.hpp).
+  void use_world_for(bool tracing) {
+    if (tracing == tracing_) return;
+    tracing_ = tracing;
+    if (scene_ && scene_model_ && gpu::choose_world(*scene_model_, precision_, tracing).float_world !=
+                                      scene_->packed.float_world)
+      prepare(*scene_model_);
   }
 
   ~VulkanBackend() override {
@@ -87,6 +105,11 @@ class VulkanBackend : public Backend {
     reset_descriptor_pool();
     auto s = std::make_unique<DeviceScene>();
     s->packed = gpu::pack_scene(scene);
+    gpu::WorldChoice world = gpu::choose_world(scene, precision_, tracing_);
+    if (world.float_world && tracing_ && trace_anchor_) world.anchor = *trace_anchor_;
+    gpu::set_world(s->packed, world.float_world, world.anchor);
+    stats_.info[info_key::kPrecision] = world.description;
+    stats_.info[info_key::kPrecisionObjects] = world.objects;
     const gpu::PackedScene& p = s->packed;
     check_limits(p, scene.source);
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) s->buffers[b] = upload(gpu::scene_buffer(p, b));
@@ -130,11 +153,12 @@ class VulkanBackend : public Backend {
   }
 
   Image render(const RenderSettings& settings) override {
+    use_world_for(false);
     const Kernel& kernel = kernel_for(false);
     auto start = std::chrono::steady_clock::now();
     const ImageSettings& s = settings.image;
     const GpuFrame frame = gpu::frame_for(scene_->packed, settings.camera.value_or(scene_model_->camera), settings);
-    const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(frame, gpu::sample_offsets(s.spp));
+    const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(scene_->packed, frame, gpu::sample_offsets(s.spp));
     vk::Buffer frame_buffer = vk::upload_storage(*context_, *commands_, frame_bytes.data(), frame_bytes.size(),
                                                  "upload of the frame constants");
     auto [tw, th] = gpu::tile_size(s);
@@ -167,6 +191,8 @@ class VulkanBackend : public Backend {
   }
 
   std::vector<TraceResult> trace(std::span<const TraceQuery> rays) override {
+    use_world_for(true);
+    anchor_at(rays);
     const Kernel& kernel = kernel_for(true);
     auto start = std::chrono::steady_clock::now();
     GpuFrame frame = gpu::frame_for(scene_->packed, scene_model_->camera, RenderSettings{});
@@ -175,11 +201,11 @@ class VulkanBackend : public Backend {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const size_t n = std::min(gpu::kTraceRaysPerDispatch, rays.size() - first);
       frame.flags[1] = int32_t(n);
-      const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(frame, {});
+      const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(scene_->packed, frame, {});
       vk::Buffer frame_buffer = vk::upload_storage(*context_, *commands_, frame_bytes.data(), frame_bytes.size(),
                                                    "upload of the frame constants");
-      const std::vector<GpuTraceRay> io = gpu::trace_records(rays.subspan(first, n));
-      const VkDeviceSize bytes = n * sizeof(GpuTraceRay);
+      const std::vector<unsigned char> io = gpu::trace_records(scene_->packed, rays.subspan(first, n));
+      const VkDeviceSize bytes = io.size();
       vk::Buffer staging(*context_, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                          vk::Memory::Staging, "allocation of the ray staging buffer");
       std::memcpy(staging.mapped(), io.data(), bytes);
@@ -187,7 +213,8 @@ class VulkanBackend : public Backend {
                          vk::Memory::Device, "allocation of the ray buffer");
       bind(kernel, frame_buffer, records);
       commands_->run("tracing", [&](VkCommandBuffer cb) { record_trace(cb, kernel, staging, records, n); });
-      gpu::read_trace_records({static_cast<const GpuTraceRay*>(staging.mapped()), n}, std::span(results).subspan(first, n));
+      gpu::read_trace_records(scene_->packed, {static_cast<const unsigned char*>(staging.mapped()), size_t(bytes)},
+                              std::span(results).subspan(first, n));
     }
     stats_.rays += rays.size();
     stats_.rays_by_kind[ray_kind::kTrace] += rays.size();
@@ -250,7 +277,7 @@ class VulkanBackend : public Backend {
     if (!scene_) throw RuntimeError("vulkan backend: render or trace before prepare");
     Kernel& slot = trace ? scene_->trace : scene_->render;
     if (slot.pipeline) return slot;
-    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue, float_primitives_));
+    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue));
     vk::PipelineStats build;
     slot.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
     if (!slot.descriptors) slot.descriptors = allocate_descriptors();
@@ -326,7 +353,7 @@ class VulkanBackend : public Backend {
   void record_trace(VkCommandBuffer cb, const Kernel& kernel, const vk::Buffer& staging, const vk::Buffer& records,
                     size_t n) {
     const vk::Api& vk = api();
-    const VkBufferCopy region{0, 0, n * sizeof(GpuTraceRay)};
+    const VkBufferCopy region{0, 0, n * gpu::trace_record_bytes(scene_->packed)};
     vk.vkCmdCopyBuffer(cb, staging.handle(), records.handle(), 1, &region);
     vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -381,7 +408,9 @@ class VulkanBackend : public Backend {
   const Scene* scene_model_ = nullptr;
   mutable size_t reported_ = 0;
   BackendStats stats_;
-  bool float_primitives_ = false;  // --precision float
+  Precision precision_ = Precision::automatic;
+  bool tracing_ = false;  // the prepared world is for `trace`
+  std::optional<glm::dvec3> trace_anchor_;  // a float world's anchor for `trace`: its rays' origins
 };
 
 void probe(PrismBackendProbe* out) {

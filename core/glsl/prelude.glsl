@@ -5,11 +5,11 @@
 // PRISM_FEATURE_* defines) and before the shared library
 // (prism/sdk/modules/library.shared.glsl) and every plugin source.
 //
-// Precision: double, unless the header defines PRISM_REAL_FLOAT (a kernel
-// whose plugins intersect in float, `--precision float`; also the float
+// Precision: double, unless the header defines PRISM_REAL_FLOAT (a float
+// kernel, or a double one whose plugins intersect in float; also the float
 // instantiation that `scripts/check_plugin_glsl.sh` compiles). The record
-// buffer is doubles either way, as the C++ `pack` writes it, and the
-// kernel's own world positions and t stay double (gpu/scene.glsl).
+// buffer is doubles, as the C++ `pack` writes them, except in a float world
+// (PRISM_WORLD_FLOAT: gpu/scene.glsl), which has no double anywhere.
 //
 // GLSL has no double atan/asin: prism_atan2 and prism_safe_asin evaluate in
 // float, which is far inside what a texel or an 8-bit pixel resolves; only
@@ -37,14 +37,36 @@ const double PRISM_PI = 3.14159265358979323846LF;
 #endif
 
 // Every object's packed parameter record, as the plugin's C++ `pack` wrote
-// it (std430: a flat run of doubles). `rec` is the record's first double.
+// it (std430: a flat run of doubles; rounded to floats for a float world,
+// PRISM_WORLD_FLOAT, which holds no double). `rec` is the record's first number.
+#ifdef PRISM_WORLD_FLOAT
+layout(std430, binding = PRISM_BINDING_RECORDS) readonly buffer PrismRecordBuffer {
+  float prism_records[];
+};
+#else
 layout(std430, binding = PRISM_BINDING_RECORDS) readonly buffer PrismRecordBuffer {
   double prism_records[];
 };
+#endif
 
-real prism_record(uint rec, uint i) { return real(prism_records[rec + i]); }
+// A kernel that knows every record offset (the GPU kernel of a small
+// scene, PRISM_RECORD_COUNT) reads the records once into this copy and the
+// plugins read the copy: a driver that runs lanes together then reads each
+// number once, not once per lane and test (gpu/scene.glsl, "caches").
+#ifdef PRISM_RECORD_COUNT
+#ifdef PRISM_WORLD_FLOAT
+float prism_record_cache[PRISM_RECORD_COUNT];
+#else
+double prism_record_cache[PRISM_RECORD_COUNT];
+#endif
+#define PRISM_RECORD_AT(i) prism_record_cache[i]
+#else
+#define PRISM_RECORD_AT(i) prism_records[i]
+#endif
+
+real prism_record(uint rec, uint i) { return real(PRISM_RECORD_AT(rec + i)); }
 real3 prism_record3(uint rec, uint i) {
-  return real3(prism_records[rec + i], prism_records[rec + i + 1u], prism_records[rec + i + 2u]);
+  return real3(PRISM_RECORD_AT(rec + i), PRISM_RECORD_AT(rec + i + 1u), PRISM_RECORD_AT(rec + i + 2u));
 }
 
 bool prism_is_finite(real x) { return !isinf(x) && !isnan(x); }

