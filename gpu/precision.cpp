@@ -90,7 +90,7 @@ ObjectPrecision object_precision(const Object& object, const glm::dvec3& anchor)
   return result;
 }
 
-WorldChoice choose_world(const Scene& scene, Precision requested, bool trace) {
+WorldChoice choose_world(const Scene& scene, Precision requested, bool trace, bool device_has_double) {
   WorldChoice choice;
   choice.anchor = scene.camera.position;
   size_t doubles = 0;
@@ -104,7 +104,8 @@ WorldChoice choose_world(const Scene& scene, Precision requested, bool trace) {
       reasons += (reasons.empty() ? "" : "; ") + std::string("object ") + std::to_string(i) + " (" +
                  scene.objects[i].desc->type_name + "): " + p.reason;
   }
-  if (requested == Precision::automatic) choice.float_world = !trace && doubles == 0;
+  if (!device_has_double) choice.float_world = true;
+  else if (requested == Precision::automatic) choice.float_world = !trace && doubles == 0;
   else choice.float_world = requested == Precision::float32;
   if (!choice.float_world) choice.anchor = glm::dvec3(0);
   choice.description = choice.float_world ? "float" : "double geometry, float32 shading";
@@ -112,7 +113,13 @@ WorldChoice choose_world(const Scene& scene, Precision requested, bool trace) {
                              std::to_string(scene.objects.size()) + " objects float-safe";
   if (doubles == 0) choice.objects = counts;
   else choice.objects = counts + "; double needed for " + reasons + (doubles > 4 ? "; ..." : "");
-  if (requested == Precision::automatic && trace) choice.objects += " (prism trace: double for arbitrary rays)";
+  if (requested == Precision::automatic && trace && device_has_double)
+    choice.objects += " (prism trace: double for arbitrary rays)";
+  if (!device_has_double && (doubles > 0 || requested == Precision::float64))
+    choice.warning = "the device has no double precision (shaderFloat64), so this scene runs in float" +
+                     std::string(requested == Precision::float64 ? " although double was asked for" : "") +
+                     (doubles > 0 ? "; expect errors beyond the GPU bounds at " + reasons + (doubles > 4 ? "; ..." : "")
+                                  : std::string());
   return choice;
 }
 

@@ -25,6 +25,7 @@ struct WorldChoice {
   glm::dvec3 anchor{0};
   std::string description;                // what --stats info.precision says
   std::string objects;                    // what --stats info.precision_objects says
+  std::string warning;                    // non-empty when float is forced where double was needed
   std::vector<ObjectPrecision> per_object;
 };
 
@@ -37,8 +38,11 @@ double float_point_error(double far);
 ObjectPrecision object_precision(const Object& object, const glm::dvec3& anchor);
 
 // The world a backend renders `scene` in when asked for `requested`; for
-// `trace` (arbitrary rays, not the camera's) automatic means double.
-WorldChoice choose_world(const Scene& scene, Precision requested, bool trace = false);
+// `trace` (arbitrary rays, not the camera's) automatic means double. On a
+// device without double (`device_has_double` false) every world is float,
+// and `warning` names the objects the rule wanted in double, with the
+// errors it expects there.
+WorldChoice choose_world(const Scene& scene, Precision requested, bool trace = false, bool device_has_double = true);
 
 // Where a float world answering `rays` is anchored: the mean of their
 // origins, so that positions near them keep float's resolution (a ray

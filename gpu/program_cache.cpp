@@ -63,12 +63,18 @@ std::string save_failed_source(const std::string& api, const std::string& source
   }
 }
 
+namespace {
 std::string compile_reason(const std::string& cache_state) {
-  if (cache_state == "miss") return "not in the program cache yet: once, seconds on a software driver";
-  if (cache_state == "stale") return "the driver changed since it was cached";
-  if (cache_state == "corrupt") return "its program-cache entry was damaged";
+  if (cache_state == "miss") return "cached afterwards";
+  if (cache_state == "stale") return "the driver changed since it was cached; cached afterwards";
+  if (cache_state == "corrupt") return "its program-cache entry was damaged; cached afterwards";
   if (cache_state == "unsupported") return "the driver keeps no compiled programs";
   return "no program cache";
+}
+}  // namespace
+
+std::string compile_notice(const std::string& backend, const std::string& cache_state) {
+  return "compiling the " + backend + " kernel for this scene (" + compile_reason(cache_state) + ")\u2026";
 }
 
 }  // namespace prism::gpu

@@ -26,9 +26,10 @@ std::optional<std::string> read_cache_file(const std::filesystem::path& file);
 // next run a compile, so failures are ignored.
 void write_cache_file(const std::filesystem::path& file, const std::string& bytes);
 
-// Why a kernel is being compiled, from its cache state ("miss", "stale",
-// "corrupt", "disabled", "unsupported"), for the notice before the compile.
-std::string compile_reason(const std::string& cache_state);
+// The notice before a compile, with why, from the kernel's cache state
+// ("miss", "stale", "corrupt", "disabled", "unsupported"): "compiling the
+// opengl kernel for this scene (cached afterwards)…".
+std::string compile_notice(const std::string& backend, const std::string& cache_state);
 
 // Keeps the generated source of a kernel that failed to build where the user
 // can read it (the cache folder, else the temporary folder) and returns the

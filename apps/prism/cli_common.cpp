@@ -112,23 +112,30 @@ volatile sig_atomic_t first_signal = 0;
 // handler's message (which must not call into stdio).
 volatile sig_atomic_t progress_line_open = 0;
 
-// Only async-signal-safe calls: an atomic store and alarm().
+// Removes the temporary files and exits as the signal asked, without
+// unwinding anything (write, unlink and _exit are async-signal-safe).
+template <size_t N>
+[[noreturn]] void end_at_once(const char (&message)[N]) {
+  if (progress_line_open) {
+    [[maybe_unused]] const ssize_t ended = write(STDERR_FILENO, "\n", 1);
+  }
+  [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, message, N - 1);
+  remove_temporary_files();
+  _exit(128 + (first_signal != 0 ? int(first_signal) : SIGTERM));
+}
+
+// Only async-signal-safe calls: atomics, alarm() and end_at_once.
 void on_interrupt(int signal) {
   if (first_signal == 0) first_signal = signal;
+  if (uninterruptible_work_running())  // a kernel compile: no check would come for seconds
+    end_at_once("prism: interrupted while compiling a GPU kernel: ended at once, the output files were left as they were\n");
   request_cancel(signal);
   alarm(kStopGraceSeconds);  // a run stuck in a plugin never checks the request
 }
 
-// The grace period ran out: remove the temporary files and exit as the
-// signal asked, without unwinding anything (unlink and _exit are safe here).
+// The grace period ran out.
 void on_deadline(int) {
-  static const char message[] = "prism: interrupted, and the run did not stop within the grace period: ended at once, the output files were left as they were\n";
-  if (progress_line_open) {
-    [[maybe_unused]] const ssize_t ended = write(STDERR_FILENO, "\n", 1);
-  }
-  [[maybe_unused]] const ssize_t written = write(STDERR_FILENO, message, sizeof message - 1);
-  remove_temporary_files();
-  _exit(128 + (first_signal != 0 ? int(first_signal) : SIGTERM));
+  end_at_once("prism: interrupted, and the run did not stop within the grace period: ended at once, the output files were left as they were\n");
 }
 }  // namespace
 

@@ -125,7 +125,7 @@ BackendChoice open_backend_showing_it(Registry& registry, const std::string& bac
 void prepare_showing_it(const BackendChoice& choice, const Scene& scene, bool show);
 
 // Prints the core's notices of slow steps (prism/status.hpp) on stderr,
-// each on a line of its own: "prism: opengl: compiling the kernel (...)".
+// each on a line of its own: "prism: compiling the opengl kernel for this scene (cached afterwards)…".
 void show_status_notices();
 
 // --precision auto|float|double, on render, trace, bench and conform.

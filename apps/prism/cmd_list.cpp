@@ -1,8 +1,12 @@
 // prism list: every backend and primitive plugin found, its version, and
-// whether it can run here (or why not).
+// whether it can run here (or why not); with a scene, the precision the GPU
+// kernels would give each of its objects, and why.
 #include <cstdio>
+#include <memory>
 
+#include "cli_common.hpp"
 #include "commands.hpp"
+#include "precision.hpp"
 #include "prism/registry.hpp"
 
 namespace prism::cli {
@@ -60,7 +64,22 @@ void print_auto_choice(const std::vector<PluginReport>& reports) {
   std::printf("\n");
 }
 
-int run_list() {
+// The GPU backends' precision rule (gpu/precision.hpp) applied to `file`.
+void print_gpu_precision(Registry& registry, const std::string& file, const std::string& precision_text) {
+  const Precision precision = precision_flag(precision_text);
+  const Scene scene = load_scene(file, registry);
+  const gpu::WorldChoice world = gpu::choose_world(scene, precision);
+  std::printf("GPU kernels (opengl, vulkan) for %s, --precision %s: %s world\n", file.c_str(), precision_text.c_str(),
+              world.float_world ? "float" : "double");
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const gpu::ObjectPrecision& p = world.per_object[i];
+    std::printf("  object %zu (%s): %s\n", i, scene.objects[i].desc->type_name,
+                p.needs_double ? ("double: " + p.reason).c_str() : "float");
+  }
+}
+
+int run_list(const std::string& scene, const std::string& precision) {
+  if (!scene.empty()) precision_flag(precision);  // bad input before the slow scan
   Registry registry;
   std::printf("plugin search path:\n");
   for (const auto& folder : registry.search_path()) std::printf("  %s\n", folder.c_str());
@@ -83,14 +102,19 @@ int run_list() {
                 report.path.c_str(), note.c_str());
   }
   print_auto_choice(reports);
+  if (!scene.empty()) print_gpu_precision(registry, scene, precision);
   return 0;
 }
 
 }  // namespace
 
 Command add_list_command(CLI::App& app) {
-  app.add_subcommand("list", "List backends and primitive plugins, and whether each can run here");
-  return run_list;
+  auto scene = std::make_shared<std::string>();
+  auto precision = std::make_shared<std::string>("auto");
+  CLI::App* sub = app.add_subcommand("list", "List backends and primitive plugins, and whether each can run here");
+  sub->add_option("scene", *scene, "A scene: also say which precision the GPU kernels give each of its objects, and why");
+  sub->add_option("--precision", *precision, kPrecisionHelp);
+  return [scene, precision] { return run_list(*scene, *precision); };
 }
 
 }  // namespace prism::cli

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernel_source.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "program_cache.hpp"
 #include "prism/status.hpp"
@@ -156,8 +157,11 @@ GLuint build_program(const std::string& source, const std::string& driver_identi
     program = load_cached(stats.cache_file, key, stats);
   }
   if (program == 0) {
-    notify_status("opengl: compiling the kernel (" + gpu::compile_reason(stats.cache) + ")");
-    program = compile_and_link(source, key, stats);
+    notify_status(gpu::compile_notice("opengl", stats.cache));
+    {
+      const UninterruptibleWork compiling;
+      program = compile_and_link(source, key, stats);
+    }
     if (!stats.cache_file.empty()) store_cached(program, stats.cache_file, key);
   }
   stats.ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -64,11 +64,16 @@ struct Candidate {
   VkPhysicalDeviceProperties properties;
   uint32_t index;
   uint32_t queue_family;
+  bool float64;         // shaderFloat64, unless hidden_float64()
   std::string problem;  // empty when suitable
 };
 
+// PRISM_VULKAN_HIDE_FLOAT64=1 makes every device look as if it lacked
+// shaderFloat64, so that the float-only path is tested on a device that has it.
+bool hidden_float64() { return env_number("PRISM_VULKAN_HIDE_FLOAT64", 0.0, 0.0, 1.0) == 1.0; }
+
 Candidate examine(const Api& api, VkPhysicalDevice device, uint32_t index) {
-  Candidate c{device, {}, index, 0, {}};
+  Candidate c{device, {}, index, 0, false, {}};
   api.vkGetPhysicalDeviceProperties(device, &c.properties);
   VkPhysicalDeviceFeatures features{};
   api.vkGetPhysicalDeviceFeatures(device, &features);
@@ -82,10 +87,9 @@ Candidate examine(const Api& api, VkPhysicalDevice device, uint32_t index) {
     c.problem = "supports Vulkan " + version_text(c.properties.apiVersion) + ", Prism needs 1.2";
   else if (compute == families.end())
     c.problem = "has no compute queue";
-  else if (!features.shaderFloat64)
-    c.problem = "lacks shaderFloat64 (the kernels intersect in double precision)";
   else
     c.queue_family = uint32_t(compute - families.begin());
+  c.float64 = features.shaderFloat64 && !hidden_float64();
   return c;
 }
 
@@ -187,7 +191,8 @@ void Context::choose_device() {
   const char* wanted = std::getenv("PRISM_VULKAN_DEVICE");
   std::string listing;
   for (const Candidate& c : candidates)
-    listing += "\n  " + std::to_string(c.index) + ": " + c.properties.deviceName + (c.problem.empty() ? "" : " (" + c.problem + ")");
+    listing += "\n  " + std::to_string(c.index) + ": " + c.properties.deviceName +
+               (c.problem.empty() ? (c.float64 ? "" : " (no shaderFloat64: float kernels only)") : " (" + c.problem + ")");
   if (wanted && *wanted) {
     const std::string w = wanted;
     const bool by_index = std::all_of(w.begin(), w.end(), [](unsigned char ch) { return std::isdigit(ch); });
@@ -205,6 +210,7 @@ void Context::choose_device() {
   physical_ = chosen->handle;
   properties_ = chosen->properties;
   queue_family_ = chosen->queue_family;
+  float64_ = chosen->float64;
   api_.vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 }
 
@@ -215,7 +221,7 @@ void Context::create_device() {
   queue.queueCount = 1;
   queue.pQueuePriorities = &priority;
   VkPhysicalDeviceFeatures features{};
-  features.shaderFloat64 = VK_TRUE;
+  features.shaderFloat64 = float64_ ? VK_TRUE : VK_FALSE;
   auto info = make<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
   info.queueCreateInfoCount = 1;
   info.pQueueCreateInfos = &queue;
@@ -227,13 +233,13 @@ void Context::create_device() {
 
 std::string Context::description() const {
   return std::string(properties_.deviceName) + ", " + type_name(properties_.deviceType) + ", Vulkan " +
-         version_text(properties_.apiVersion);
+         version_text(properties_.apiVersion) + (float64_ ? "" : ", no shaderFloat64");
 }
 
 std::string Context::identity() const {
   char ids[32];
   std::snprintf(ids, sizeof ids, "%08x:%08x", properties_.vendorID, properties_.deviceID);
-  return std::string(properties_.deviceName) + " " + ids;
+  return std::string(properties_.deviceName) + " " + ids + (float64_ ? "" : " no-fp64");
 }
 
 size_t Context::validation_message_count() const {

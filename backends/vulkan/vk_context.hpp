@@ -4,8 +4,10 @@
 // The device: $PRISM_VULKAN_DEVICE picks one by index (in the order
 // vkEnumeratePhysicalDevices gives) or by a case-insensitive substring of its
 // name; otherwise the first suitable one, discrete GPUs before integrated,
-// virtual and CPU devices. Suitable: Vulkan 1.2, a compute queue, and
-// shaderFloat64 (the shared kernels intersect in double precision).
+// virtual and CPU devices. Suitable: Vulkan 1.2 and a compute queue.
+// shaderFloat64 is enabled where the device has it; without it (or with
+// PRISM_VULKAN_HIDE_FLOAT64=1, for tests) every kernel runs in a float world
+// (gpu/precision.hpp), which holds no double.
 //
 // Validation: with PRISM_VULKAN_VALIDATION=1 (the test suite sets it) the
 // Khronos validation layer is required, with synchronisation validation on,
@@ -38,6 +40,8 @@ class Context {
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceMemoryProperties& memory() const { return memory_; }
   bool validation() const { return messenger_ != VK_NULL_HANDLE; }
+  // Whether kernels may use double (shaderFloat64 enabled).
+  bool has_float64() const { return float64_; }
 
   // "llvmpipe (LLVM 15.0.6, 256 bits), CPU device, Vulkan 1.3.230"
   std::string description() const;
@@ -71,6 +75,7 @@ class Context {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   uint32_t queue_family_ = 0;
+  bool float64_ = false;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;
   mutable bool abandoned_ = false;

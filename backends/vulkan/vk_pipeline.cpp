@@ -8,6 +8,7 @@
 #include "gpu_dispatch.hpp"
 #include "gpu_layout.hpp"
 #include "kernel_source.hpp"
+#include "prism/cancel.hpp"
 #include "prism/errors.hpp"
 #include "program_cache.hpp"
 #include "prism/status.hpp"
@@ -184,13 +185,17 @@ VkPipeline build_pipeline(const Context& context, const PipelineLayout& layout, 
     hit = load_entry(context, stats.cache_file, key, entry, stats);
   }
   if (!hit) {
-    notify_status("vulkan: compiling the kernel (" + gpu::compile_reason(stats.cache) + ")");
+    notify_status(gpu::compile_notice("vulkan", stats.cache));
+    const UninterruptibleWork compiling;
     const auto compile_start = std::chrono::steady_clock::now();
     entry.spirv = compile(source, key, stats);
     stats.glslang_ms += gpu::ms_since(compile_start);
   }
   const auto driver_start = std::chrono::steady_clock::now();
-  VkPipeline pipeline = create_pipeline(context, layout, entry);
+  VkPipeline pipeline = [&] {
+    const UninterruptibleWork compiling;  // the driver compiles the SPIR-V here
+    return create_pipeline(context, layout, entry);
+  }();
   stats.driver_ms += gpu::ms_since(driver_start);
   if (!hit && !stats.cache_file.empty()) store_entry(context, stats.cache_file, key, entry);
   stats.ms += gpu::ms_since(start);

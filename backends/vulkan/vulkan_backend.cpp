@@ -21,6 +21,7 @@
 #include "prism/backend_fingerprint.hpp"
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
+#include "prism/status.hpp"
 #include "vk_buffer.hpp"
 #include "vk_context.hpp"
 #include "vk_pipeline.hpp"
@@ -88,9 +89,13 @@ class VulkanBackend : public Backend {
   void use_world_for(bool tracing) {
     if (tracing == tracing_) return;
     tracing_ = tracing;
-    if (scene_ && scene_model_ && gpu::choose_world(*scene_model_, precision_, tracing).float_world !=
-                                      scene_->packed.float_world)
+    if (scene_ && scene_model_ && world_for(*scene_model_).float_world != scene_->packed.float_world)
       prepare(*scene_model_);
+  }
+
+  // The world choice for `scene`: every world is float on a device without double.
+  gpu::WorldChoice world_for(const Scene& scene) const {
+    return gpu::choose_world(scene, precision_, tracing_, context_->has_float64());
   }
 
   ~VulkanBackend() override {
@@ -105,11 +110,18 @@ class VulkanBackend : public Backend {
     reset_descriptor_pool();
     auto s = std::make_unique<DeviceScene>();
     s->packed = gpu::pack_scene(scene);
-    gpu::WorldChoice world = gpu::choose_world(scene, precision_, tracing_);
+    gpu::WorldChoice world = world_for(scene);
     if (world.float_world && tracing_ && trace_anchor_) world.anchor = *trace_anchor_;
     gpu::set_world(s->packed, world.float_world, world.anchor);
     stats_.info[info_key::kPrecision] = world.description;
     stats_.info[info_key::kPrecisionObjects] = world.objects;
+    if (world.warning.empty()) {
+      stats_.info.erase(info_key::kPrecisionWarning);
+    } else {
+      stats_.info[info_key::kPrecisionWarning] = world.warning;
+      if (world.warning != last_warning_) notify_status("vulkan: warning: " + world.warning);
+    }
+    last_warning_ = world.warning;
     const gpu::PackedScene& p = s->packed;
     check_limits(p, scene.source);
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) s->buffers[b] = upload(gpu::scene_buffer(p, b));
@@ -409,6 +421,7 @@ class VulkanBackend : public Backend {
   mutable size_t reported_ = 0;
   BackendStats stats_;
   Precision precision_ = Precision::automatic;
+  std::string last_warning_;  // said once, not at every prepare of the same scene
   bool tracing_ = false;  // the prepared world is for `trace`
   std::optional<glm::dvec3> trace_anchor_;  // a float world's anchor for `trace`: its rays' origins
 };

@@ -30,10 +30,14 @@
 #define INOUT(T) inout T
 #define PrismRecord uint
 
+// PRISM_REAL_EPSILON: the spacing of `real` at 1 (std::numeric_limits<real>::epsilon()),
+// for tolerances that must not ask for more digits than `real` has.
 #ifdef PRISM_REAL_FLOAT
 const float PRISM_PI = 3.14159265358979323846;
+const float PRISM_REAL_EPSILON = 1.0 / 8388608.0;  // 2^-23
 #else
 const double PRISM_PI = 3.14159265358979323846LF;
+const double PRISM_REAL_EPSILON = 1.0LF / 4503599627370496.0LF;  // 2^-52
 #endif
 
 // Every object's packed parameter record, as the plugin's C++ `pack` wrote

@@ -31,6 +31,15 @@ int cancel_requested() noexcept { return pending.load(std::memory_order_relaxed)
 void clear_cancel() noexcept { pending.store(0); }
 
 namespace {
+std::atomic<int> uninterruptible{0};
+static_assert(std::atomic<int>::is_always_lock_free, "read from a signal handler");
+}  // namespace
+
+UninterruptibleWork::UninterruptibleWork() noexcept { uninterruptible.fetch_add(1); }
+UninterruptibleWork::~UninterruptibleWork() { uninterruptible.fetch_sub(1); }
+bool uninterruptible_work_running() noexcept { return uninterruptible.load(std::memory_order_relaxed) > 0; }
+
+namespace {
 std::mutex fault_mutex;
 std::string fault_message;  // guarded by fault_mutex; set before pending becomes kFaultStop
 }  // namespace

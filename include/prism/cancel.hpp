@@ -39,6 +39,20 @@ void clear_cancel() noexcept;
 // its message (and the fault is forgotten: the next run starts clean).
 void throw_if_cancelled();
 
+// Work that cannot look at a cancel request for seconds (a driver compiling
+// a GPU kernel) holds one of these while it runs. A program's interrupt
+// handler may then end the process at once rather than wait for a check
+// that will not come (prism does: nothing is half-written during a
+// compile). uninterruptible_work_running() is async-signal-safe.
+class PRISM_CORE_API UninterruptibleWork {
+ public:
+  UninterruptibleWork() noexcept;
+  ~UninterruptibleWork();
+  UninterruptibleWork(const UninterruptibleWork&) = delete;
+  UninterruptibleWork& operator=(const UninterruptibleWork&) = delete;
+};
+bool uninterruptible_work_running() noexcept;
+
 // Temporary files that must not outlive the process: a program's deadline
 // handler (prism's, after a signal the run did not stop for) removes them
 // with remove_temporary_files(). The names live in a fixed table, so all

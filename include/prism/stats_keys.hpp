@@ -54,6 +54,7 @@ namespace info_key {
 inline constexpr const char* kDevice = "device";                      // GPU backends: the driver's description
 inline constexpr const char* kPrecision = "precision";                // "double", or what is float
 inline constexpr const char* kPrecisionObjects = "precision_objects";  // GPU backends: which objects need double, and why
+inline constexpr const char* kPrecisionWarning = "precision_warning";  // Vulkan without double: what float costs here
 inline constexpr const char* kValidation = "validation";              // Vulkan: "on" or "off"
 inline constexpr const char* kProgramCache = "program_cache";         // GPU backends: hit or miss
 inline constexpr const char* kProgramCacheFile = "program_cache_file";

@@ -41,9 +41,14 @@
 // Newton stops once a step is below these (in units of R); the step just
 // taken leaves an error ~K * step^2, far below double resolution. A critical
 // point off by 1e-9 changes f's extremum by ~1e-18, so it still separates
-// any root pair that double precision can tell apart.
-const real TORUS_CRITICAL_TOL = R(1.0) / R(1000000000.0);  // 1e-9, a quotient of float-exact literals
-const real TORUS_ROOT_TOL = R(1.0) / (R(1000000.0) * R(1000000.0));  // 1e-12, likewise
+// any root pair that double precision can tell apart. In float neither can
+// be reached (g and f' are known to a few ulps), so there the tolerance is
+// 8 ulps at 1: without that floor the float steps wander at ulp level until
+// the bracket closes, several times the double step count (on the GPU, each
+// step costs every lane of the group). In double the floor never binds.
+const real TORUS_FLOOR_TOL = R(8.0) * PRISM_REAL_EPSILON;
+const real TORUS_CRITICAL_TOL = max(R(1.0) / R(1000000000.0), TORUS_FLOOR_TOL);  // 1e-9, a quotient of float-exact literals
+const real TORUS_ROOT_TOL = max(R(1.0) / (R(1000000.0) * R(1000000.0)), TORUS_FLOOR_TOL);  // 1e-12, likewise
 
 // The scaled ray p(s) = u + s d against the torus R = 1, tube radius `tube`,
 // and the scan over its monotone pieces.
@@ -123,30 +128,36 @@ real4 torus_quartic(TorusScan sc) {
 }
 
 // Feeds the scan the critical points of f in [-h, h] in order, then h.
+// The breaks of f' are -h, the roots of f'' inside (-h, h) and h; step i < 3
+// closes the piece of f' that ends at break i + 1 (r0, r1, h) and advances to
+// its critical point, if f' changes sign there; step 3 advances to h. One
+// loop with one advance: a GPU compiler inlines every call, and a CPU
+// driver runs each copy for all lanes of a group, even when none needs it.
 void torus_scan_pieces(INOUT(TorusScan) sc, real h) {
   real4 c = torus_quartic(sc);
-  real r[2];
-  int n = prism_solve_quadratic(R(12.0), R(6.0) * c.w, R(2.0) * c.z, r[0], r[1]);
-  real ends[4];
-  ends[0] = -h;
-  ends[1] = R(0.0);
-  ends[2] = R(0.0);
-  ends[3] = R(0.0);
-  int count = 1;
-  for (int i = 0; i < n; ++i)
-    if (r[i] > -h && r[i] < h) ends[count++] = r[i];
-  ends[count++] = h;
+  real r0, r1;
+  int n = prism_solve_quadratic(R(12.0), R(6.0) * c.w, R(2.0) * c.z, r0, r1);
   sc.a = -h;
   sc.ga = torus_distance_at(sc, -h);
-  for (int i = 0; i + 1 < count && !sc.done; ++i) {
-    real a = ends[i], b = ends[i + 1], fa = torus_d1(c, a), fb = torus_d1(c, b);
-    if ((fa > R(0.0)) == (fb > R(0.0))) continue;
-    PrismBracket br = prism_bracket_start(a, b, fa, fb, TORUS_CRITICAL_TOL * (R(1.0) + abs(a)));
-    for (int k = 0; k < PRISM_BRACKET_MAX_STEPS; ++k)
-      if (prism_bracket_step(br, torus_d1(c, br.s), torus_d2(c, br.s))) break;
-    torus_advance(sc, br.s);
+  real a = -h;  // the last break of f' passed
+  for (int i = 0; i < 4 && !sc.done; ++i) {
+    real b = i == 0 ? r0 : (i == 1 ? r1 : h);
+    bool piece = i == 2 || (i < n && b > -h && b < h);
+    real stop = h;
+    bool advance = i == 3;
+    if (piece) {
+      real fa = torus_d1(c, a), fb = torus_d1(c, b);
+      if ((fa > R(0.0)) != (fb > R(0.0))) {
+        PrismBracket br = prism_bracket_start(a, b, fa, fb, TORUS_CRITICAL_TOL * (R(1.0) + abs(a)));
+        for (int k = 0; k < PRISM_BRACKET_MAX_STEPS; ++k)
+          if (prism_bracket_step(br, torus_d1(c, br.s), torus_d2(c, br.s))) break;
+        stop = br.s;
+        advance = true;
+      }
+      a = b;
+    }
+    if (advance) torus_advance(sc, stop);
   }
-  torus_advance(sc, h);
 }
 
 bool torus_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(PrismHit) hit) {

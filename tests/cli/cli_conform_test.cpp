@@ -109,6 +109,30 @@ TEST_F(Conform, ABadSizeIsBadInput) {
                    "got '40by30'\n");
 }
 
+// The GPU precision rule is tested, not assumed: on the scenes it sends to
+// double (docs/numerics.md, "Float or double on the GPU"), forcing float
+// breaks the conformance caps, as the rule predicted; with auto the same
+// scenes pass (the conform.far_camera.* and conform.tiny_huge.* tests).
+class ForcedFloat : public CliTest, public testing::WithParamInterface<std::string> {};
+
+std::vector<std::string> gpu_backends() {
+  std::vector<std::string> names = prism::test::backend_names();
+  std::erase_if(names, [](const std::string& name) { return name != "opengl" && name != "vulkan"; });
+  return names;
+}
+
+TEST_P(ForcedFloat, BreaksTheCapsOnTheScenesTheRuleSendsToDouble) {
+  if (!prism::test::require_backend_or_skip(GetParam())) return;
+  for (const char* name : {"far_camera", "tiny_huge"}) {
+    const std::string scene = (prism::test::source_dir() / "scenes/conformance" / (std::string(name) + ".json")).string();
+    RunResult r = run({"conform", scene, "-b", GetParam(), "--precision", "float"});
+    EXPECT_TRUE(ExitedWith(r, 1)) << name;
+    EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, ForcedFloat, testing::ValuesIn(gpu_backends()), prism::test::backend_param_name);
+
 TEST_F(Conform, AnUnknownBackendIsBadInput) {
   RunResult r = run({"conform", sphere_scene(), "-b", "nonesuch"});
   EXPECT_TRUE(ExitedWith(r, 2));

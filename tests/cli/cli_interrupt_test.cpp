@@ -186,6 +186,49 @@ TEST_P(InterruptRender, SigintLeavesTheOldOutputAndExits130) {
 INSTANTIATE_TEST_SUITE_P(Backends, InterruptRender, testing::ValuesIn(prism::test::backend_names()),
                          prism::test::backend_param_name);
 
+// A GPU kernel compile (seconds of the driver's CPU time here) looks at no
+// cancel request: Ctrl-C during one ends the run at once, well inside the
+// grace period, and leaves the old output. The program caches point at
+// empty folders so the showcase's kernel is compiled.
+class InterruptCompile : public Interrupt, public testing::WithParamInterface<std::string> {};
+
+std::vector<std::string> compiling_backends() {
+  std::vector<std::string> names = prism::test::backend_names();
+  std::erase_if(names, [](const std::string& name) { return name != "opengl" && name != "vulkan"; });
+  return names;
+}
+
+TEST_P(InterruptCompile, SigintDuringAKernelCompileEndsAtOnce) {
+  if (!prism::test::require_backend_or_skip(GetParam())) return;
+  const fs::path caches = dir().parent_path() / "compile-caches";  // outside dir(): compared below
+  fs::remove_all(caches);
+  ::setenv("PRISM_CACHE_DIR", (caches / "prism").c_str(), 1);
+  ::setenv("MESA_SHADER_CACHE_DIR", (caches / "mesa").c_str(), 1);
+  const std::string old = "an older picture\n";
+  write("out.png", old);
+  const auto before = list_folder(dir());
+  Started s = start({"render", (prism::test::source_dir() / "scenes/showcase.json").string(), "-b", GetParam(), "-o",
+                     path("out.png").string()});
+  ASSERT_GT(s.pid, 0);
+  const std::string notice = "compiling the " + GetParam() + " kernel for this scene";
+  const auto give_up = Clock::now() + std::chrono::seconds(60);
+  while (read_file(s.err).find(notice) == std::string::npos && Clock::now() < give_up)
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // inside the compile (seconds)
+  double seconds = 0;
+  RunResult r = interrupt(s, SIGINT, seconds);
+  ::unsetenv("PRISM_CACHE_DIR");
+  ::unsetenv("MESA_SHADER_CACHE_DIR");
+  EXPECT_TRUE(ExitedWith(r, 130));
+  EXPECT_TRUE(StderrHas(r, {notice, "interrupted while compiling a GPU kernel"}));
+  EXPECT_LT(seconds, 1.0) << r;  // the grace period is kStopGraceSeconds, 2 s
+  EXPECT_EQ(list_folder(dir()), before) << r;
+  EXPECT_EQ(read_file(path("out.png")), old);
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, InterruptCompile, testing::ValuesIn(compiling_backends()),
+                         prism::test::backend_param_name);
+
 // A primitive plugin whose intersect never returns: the run can never reach
 // a cancel check. kStopGraceSeconds (2 s) after SIGTERM it is ended anyway,
 // with 143, the older output untouched and no temporary file left.

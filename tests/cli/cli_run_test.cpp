@@ -325,7 +325,8 @@ TEST_F(CliTest, PrecisionBogusExitsTwoOnEveryCommand) {
       {"trace", scene.string(), "--rays", rays.string(), "-o", path("out.csv").string()},
       {"render", scene.string(), "-o", path("out.png").string()},
       {"bench", scene.string(), "--frames", "1", "--warmup", "1"},
-      {"conform", scene.string(), "-b", "reference"}};
+      {"conform", scene.string(), "-b", "reference"},
+      {"list", scene.string()}};
   for (std::vector<std::string> args : commands) {
     SCOPED_TRACE(args[0]);
     args.insert(args.end(), {"--precision", "bogus"});
@@ -333,6 +334,25 @@ TEST_F(CliTest, PrecisionBogusExitsTwoOnEveryCommand) {
     EXPECT_TRUE(ExitedWith(r, 2));
     EXPECT_TRUE(StderrHas(r, {"--precision", "bogus"}));
   }
+}
+
+// `prism list SCENE` says which precision the GPU kernels give each object
+// and why: double for the far camera's bounded objects (the plane stays
+// float), float for every object of the showcase.
+TEST_F(CliTest, ListWithASceneShowsEachObjectsGpuPrecision) {
+  RunResult far = run({"list", (prism::test::source_dir() / "scenes/conformance/far_camera.json").string()});
+  ASSERT_TRUE(ExitedWith(far, 0));
+  EXPECT_NE(far.out.find("--precision auto: double world\n"), std::string::npos) << far;
+  EXPECT_NE(far.out.find("  object 0 (plane): float\n"), std::string::npos) << far;
+  EXPECT_NE(far.out.find("  object 1 (sphere): double: hit-point error ~"), std::string::npos) << far;
+  EXPECT_NE(far.out.find("  object 3 (torus): double: "), std::string::npos) << far;
+  RunResult showcase = run({"list", (prism::test::source_dir() / "scenes/showcase.json").string()});
+  ASSERT_TRUE(ExitedWith(showcase, 0));
+  EXPECT_NE(showcase.out.find("--precision auto: float world\n"), std::string::npos) << showcase;
+  EXPECT_EQ(showcase.out.find(": double"), std::string::npos) << showcase;
+  RunResult forced = run({"list", (prism::test::source_dir() / "scenes/conformance/far_camera.json").string(),
+                          "--precision", "float"});
+  EXPECT_NE(forced.out.find("--precision float: float world\n"), std::string::npos) << forced;
 }
 
 // A bad line: exit 2, the message names the file and the line number, and

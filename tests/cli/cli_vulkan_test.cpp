@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_harness.hpp"
 #include "test_support.hpp"
 
@@ -88,6 +90,73 @@ TEST_P(VulkanTimeoutValue, IsRefusedByName) {
 
 INSTANTIATE_TEST_SUITE_P(Values, VulkanTimeoutValue, testing::Values("inf", "ten", "0"),
                          [](const testing::TestParamInfo<std::string>& info) { return "case" + std::to_string(info.index); });
+
+// A device without shaderFloat64, played by this machine's device with the
+// feature hidden (PRISM_VULKAN_HIDE_FLOAT64=1): the backend starts, `prism
+// list` says what the device lacks, a plain scene renders in float with no
+// warning, and a scene the precision rule sends to double renders anyway,
+// with a warning naming the objects and the expected error. The showcase's
+// conformance on such a device is the CTest test
+// conform.showcase.vulkan_without_float64.
+class VulkanWithoutFloat64 : public CliTest {
+ protected:
+  void SetUp() override {
+    CliTest::SetUp();
+    if (!prism::test::require_backend_or_skip("vulkan")) GTEST_SKIP();
+    ::setenv("PRISM_VULKAN_HIDE_FLOAT64", "1", 1);
+  }
+  void TearDown() override {
+    ::unsetenv("PRISM_VULKAN_HIDE_FLOAT64");
+    CliTest::TearDown();
+  }
+
+  // Renders `scene` on vulkan (exit 0 expected) and returns its --stats info.
+  nlohmann::json render(const fs::path& scene) {
+    last_ = run({"render", scene.string(), "-b", "vulkan", "-o", path("out.png").string(), "--stats",
+                 path("stats.json").string()});
+    EXPECT_TRUE(ExitedWith(last_, 0));
+    if (!fs::exists(path("stats.json"))) return nlohmann::json::object();
+    return nlohmann::json::parse(read_file(path("stats.json")))["info"];
+  }
+
+  RunResult last_;
+};
+
+TEST_F(VulkanWithoutFloat64, ListNamesTheMissingFeature) {
+  RunResult r = run({"list"});
+  ASSERT_TRUE(ExitedWith(r, 0));
+  const std::string line = vulkan_line(r.out);
+  EXPECT_NE(line.find("no shaderFloat64"), std::string::npos) << r;
+  EXPECT_EQ(line.find("not usable here"), std::string::npos) << r;
+}
+
+TEST_F(VulkanWithoutFloat64, APlainSceneRendersInFloatWithoutAWarning) {
+  write("scene.json", SceneText().text());
+  const nlohmann::json info = render(path("scene.json"));
+  EXPECT_EQ(info.value("precision", ""), "float") << last_;
+  EXPECT_FALSE(info.contains("precision_warning")) << info.dump(2);
+  EXPECT_NE(info.value("device", "").find("no shaderFloat64"), std::string::npos) << info.dump(2);
+  EXPECT_EQ(last_.err.find("warning"), std::string::npos) << last_;
+}
+
+TEST_F(VulkanWithoutFloat64, ASceneThatNeedsDoubleRendersInFloatWithAWarning) {
+  // The far camera (1e5 away, a 0.0022 rad view): the rule wants double for
+  // its three bounded objects (docs/numerics.md, "Float or double on the GPU").
+  const nlohmann::json info = render(prism::test::source_dir() / "scenes/conformance/far_camera.json");
+  EXPECT_EQ(info.value("precision", ""), "float") << last_;
+  EXPECT_TRUE(StderrHas(last_, {"prism: vulkan: warning: the device has no double precision (shaderFloat64)",
+                                "object 1 (sphere): hit-point error", "object 3 (torus)"}));
+  EXPECT_NE(info.value("precision_warning", "").find("object 2 (sphere)"), std::string::npos) << info.dump(2);
+  EXPECT_TRUE(fs::exists(path("out.png")));
+}
+
+TEST_F(VulkanWithoutFloat64, AskingForDoubleWarnsAndRendersInFloat) {
+  write("scene.json", SceneText().text());
+  RunResult r = run({"render", path("scene.json").string(), "-b", "vulkan", "--precision", "double", "-o",
+                     path("out.png").string()});
+  EXPECT_TRUE(ExitedWith(r, 0));
+  EXPECT_TRUE(StderrHas(r, {"runs in float although double was asked for"}));
+}
 
 }  // namespace
 }  // namespace prism::cli_test
