@@ -115,12 +115,6 @@ TEST_F(Conform, ABadSizeIsBadInput) {
 // scenes pass (the conform.far_camera.* and conform.tiny_huge.* tests).
 class ForcedFloat : public CliTest, public testing::WithParamInterface<std::string> {};
 
-std::vector<std::string> gpu_backends() {
-  std::vector<std::string> names = prism::test::backend_names();
-  std::erase_if(names, [](const std::string& name) { return name != "opengl" && name != "vulkan"; });
-  return names;
-}
-
 TEST_P(ForcedFloat, BreaksTheCapsOnTheScenesTheRuleSendsToDouble) {
   if (!prism::test::require_backend_or_skip(GetParam())) return;
   for (const char* name : {"far_camera", "tiny_huge"}) {
@@ -131,7 +125,7 @@ TEST_P(ForcedFloat, BreaksTheCapsOnTheScenesTheRuleSendsToDouble) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, ForcedFloat, testing::ValuesIn(gpu_backends()), prism::test::backend_param_name);
+INSTANTIATE_TEST_SUITE_P(Backends, ForcedFloat, testing::ValuesIn(prism::test::gpu_backend_names()), prism::test::backend_param_name);
 
 TEST_F(Conform, AnUnknownBackendIsBadInput) {
   RunResult r = run({"conform", sphere_scene(), "-b", "nonesuch"});

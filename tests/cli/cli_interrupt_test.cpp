@@ -192,12 +192,6 @@ INSTANTIATE_TEST_SUITE_P(Backends, InterruptRender, testing::ValuesIn(prism::tes
 // empty folders so the showcase's kernel is compiled.
 class InterruptCompile : public Interrupt, public testing::WithParamInterface<std::string> {};
 
-std::vector<std::string> compiling_backends() {
-  std::vector<std::string> names = prism::test::backend_names();
-  std::erase_if(names, [](const std::string& name) { return name != "opengl" && name != "vulkan"; });
-  return names;
-}
-
 TEST_P(InterruptCompile, SigintDuringAKernelCompileEndsAtOnce) {
   if (!prism::test::require_backend_or_skip(GetParam())) return;
   const fs::path caches = dir().parent_path() / "compile-caches";  // outside dir(): compared below
@@ -226,7 +220,7 @@ TEST_P(InterruptCompile, SigintDuringAKernelCompileEndsAtOnce) {
   EXPECT_EQ(read_file(path("out.png")), old);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, InterruptCompile, testing::ValuesIn(compiling_backends()),
+INSTANTIATE_TEST_SUITE_P(Backends, InterruptCompile, testing::ValuesIn(prism::test::gpu_backend_names()),
                          prism::test::backend_param_name);
 
 // A primitive plugin whose intersect never returns: the run can never reach

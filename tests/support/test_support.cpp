@@ -82,6 +82,12 @@ std::vector<std::string> backends_except(const std::string& name) {
   return names;
 }
 
+std::vector<std::string> gpu_backend_names() {
+  std::vector<std::string> names = backend_names();
+  std::erase_if(names, [](const std::string& name) { return name != "opengl" && name != "vulkan"; });
+  return names;
+}
+
 bool require_backend_or_skip(const std::string& name) {
   // Probing can be slow (a GPU backend opens a device): once per backend per process.
   static Registry registry;

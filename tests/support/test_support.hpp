@@ -41,6 +41,9 @@ bool backend_required(const std::string& name);
 // backend_names() without `name` (e.g. every backend to compare with "reference").
 std::vector<std::string> backends_except(const std::string& name);
 
+// The GPU backends (opengl, vulkan) among backend_names().
+std::vector<std::string> gpu_backend_names();
+
 // Loads and probes backend `name`. Returns true when it can run here. Otherwise
 // it records a skip (or, for a name in PRISM_REQUIRE_BACKENDS or a backend that
 // does not load, a failure) and returns false. gtest skips and fatal failures
