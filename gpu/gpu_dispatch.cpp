@@ -5,6 +5,8 @@
 #include <iterator>
 #include <type_traits>
 
+#include "prism/errors.hpp"
+
 namespace prism::gpu {
 
 KernelOptions kernel_options(bool trace, const char* api_glue) {
@@ -16,6 +18,8 @@ KernelOptions kernel_options(bool trace, const char* api_glue) {
   options.local_size_y = trace ? 1 : kRenderLocalSize;
   return options;
 }
+
+bool texel_buffer_allowed() { return env_number("PRISM_GPU_TEXEL_BUFFER", 1.0, 0.0, 1.0) != 0.0; }
 
 static_assert(std::size(kRayKindNames) <= kRayCounterCount);
 

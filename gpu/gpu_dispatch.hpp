@@ -30,6 +30,11 @@ constexpr int kRenderLocalSize = 8;
 // features (PRISM_KERNEL_FEATURES=all) and the API's glue code.
 KernelOptions kernel_options(bool trace, const char* api_glue);
 
+// Whether a backend may read the texels through a buffer texture
+// (KernelOptions::texel_sampler) where they fit: yes, unless
+// PRISM_GPU_TEXEL_BUFFER=0 (the tests compare the two paths).
+bool texel_buffer_allowed();
+
 struct Tile {
   int x0, y0, width, height;
 };

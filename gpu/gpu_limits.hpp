@@ -6,7 +6,10 @@
 // the buffer, instead of letting the upload or the kernel fail.
 //
 // Textures are texels in a storage buffer too, never GL or Vulkan images, so
-// GL_MAX_TEXTURE_SIZE and maxImageDimension2D do not apply. The per-frame
+// GL_MAX_TEXTURE_SIZE and maxImageDimension2D do not apply. (The kernels
+// read them through a buffer texture over that buffer where the texels fit
+// GL_MAX_TEXTURE_BUFFER_SIZE / maxTexelBufferElements, and through the
+// storage buffer otherwise: those limits never refuse a scene.) The per-frame
 // buffers (frame constants, a tile's output, trace rays) are bounded by
 // constants far below the smallest limit either API allows (see the .cpp).
 #pragma once

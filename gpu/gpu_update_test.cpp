@@ -117,6 +117,20 @@ TEST_F(PackedUpdateTest, AMaterialTurningDielectricRegeneratesTheKernel) {
   EXPECT_EQ(u.objects_written, 0u);
 }
 
+// An unrolled kernel holds which objects are rotated (the unrotated ones
+// skip the multiply): a sphere that moves keeps the kernel, one that gains
+// a rotation needs a new one.
+TEST_F(PackedUpdateTest, AnUnrolledObjectGainingARotationRegeneratesTheKernel) {
+  Scene scene = load({.count = 4});
+  PackedScene packed = pack_scene(scene);
+  ASSERT_TRUE(packed.unrolled);
+  scene.objects[1] = load({.count = 4, .moved = 1}).objects[1];
+  EXPECT_FALSE(update_packed_scene(packed, scene, {.objects = {1}}).kernel);
+  scene.objects[1].has_rotation = true;
+  scene.objects[1].rotation = glm::dmat3(0, 1, 0, -1, 0, 0, 0, 0, 1);  // 90 degrees about z
+  EXPECT_TRUE(update_packed_scene(packed, scene, {.objects = {1}}).kernel);
+}
+
 TEST_F(PackedUpdateTest, AnAddedSphereRebuildsTheBvhAndKeepsTheKernel) {
   Scene scene = load({});
   PackedScene packed = pack_scene(scene);

@@ -54,15 +54,17 @@ std::string type_dispatch(const PackedScene& scene) {
 }
 
 // prism_test_every_object (gpu/scene.glsl, PRISM_UNROLLED_OBJECTS): each
-// object's intersector called with its slot, record and id as constants.
+// object's intersector called with its slot, record and id as constants,
+// and without the rotation for an object that has none.
 std::string unrolled_objects(const PackedScene& scene) {
+  const auto suffix = [&](size_t slot) { return scene.objects[slot].rotated ? "" : "_unrotated"; };
   std::ostringstream o;
   o << "bool prism_test_every_object(PrismWorldRay ray, wreal tmin, wreal tmax, bool any_hit, inout PrismClosest "
        "best) {\n  PrismHit h;\n";
   for (size_t slot = 0; slot < scene.objects.size(); ++slot) {
     const GpuObject& object = scene.objects[slot];
     const char* prefix = scene.types[object.type]->glsl_prefix;
-    o << "  if (" << prefix << "_intersect(" << object.record << "u, prism_to_local(" << slot
+    o << "  if (" << prefix << "_intersect(" << object.record << "u, prism_to_local" << suffix(slot) << "(" << slot
       << "u, ray), real(tmin), real(any_hit ? tmax : best.t), h) && prism_take_hit(any_hit, " << object.id << ", "
       << slot << "u, h, best))\n    return true;\n";
   }
@@ -74,8 +76,9 @@ std::string unrolled_objects(const PackedScene& scene) {
        "  PrismSurface local;\n";
   for (size_t slot = 0; slot < scene.objects.size(); ++slot) {
     const GpuObject& object = scene.objects[slot];
-    o << "  " << scene.types[object.type]->glsl_prefix << "_surface(" << object.record << "u, prism_to_local(" << slot
-      << "u, ray), c.hit, local);\n  each = prism_to_world(" << slot << "u, ray, local);\n  if (c.object == " << slot
+    o << "  " << scene.types[object.type]->glsl_prefix << "_surface(" << object.record << "u, prism_to_local"
+      << suffix(slot) << "(" << slot << "u, ray), c.hit, local);\n  each = prism_to_world" << suffix(slot) << "(" << slot
+      << "u, ray, local);\n  if (c.object == " << slot
       << "u) s = each;\n";
   }
   o << "  return s;\n}\n";
@@ -111,6 +114,7 @@ void append_defines(std::ostringstream& out, const PackedScene& scene, const std
   out << "#define PRISM_LOCAL_SIZE_Y " << options.local_size_y << '\n';
   out << "#define PRISM_GROUP_SCRAMBLE " << kGroupScramblePrime << "u\n";
   if (options.trace) out << "#define PRISM_MODE_TRACE 1\n";
+  if (options.texel_sampler) out << "#define PRISM_TEXEL_SAMPLER 1\n";
   if (scene.float_world) out << "#define PRISM_WORLD_FLOAT 1\n";
   if (scene.float_world) out << "#define PRISM_REAL_FLOAT 1\n";
   if (scene.unrolled) {

@@ -24,6 +24,12 @@ struct KernelOptions {
   // Backend glue placed after the defines: must define PRISM_TILE_ORIGIN (an
   // ivec4: x0, y0, tile width, tile height; for trace x is the first ray).
   std::string api_glue;
+  // Texels through a buffer texture (samplerBuffer; the glue defines its
+  // binding as PRISM_BINDING_TEXEL_SAMPLER) instead of the storage buffer:
+  // a CPU driver gathers a texel fetch as a vector, but reads a storage
+  // buffer at a per-lane index lane by lane. The backend sets it when the
+  // texels fit the device's texel-buffer limit.
+  bool texel_sampler = false;
   int local_size_x = 8;
   int local_size_y = 8;
 };

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <regex>
 
 #include "kernel_source.hpp"
 #include "prism/errors.hpp"
@@ -54,6 +55,37 @@ TEST(KernelSource, ForcedFeaturesCompileEverythingIn) {
   options.all_features = true;
   KernelSource kernel = generate_kernel(pack_scene(scene), options);
   for (Feature f : all_features()) EXPECT_NE(kernel.text.find("#define " + feature_macro(f) + " 1"), std::string::npos);
+}
+
+// An unrolled kernel tests an object without rotation without multiplying
+// by the identity (as the CPU's to_local skips it), a rotated one with it.
+TEST(KernelSource, UnrolledObjectsSkipTheIdentityRotation) {
+  Registry registry;
+  Scene scene = load(registry, R"({"prism": 1, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+    "objects": [{"type": "sphere", "radius": 1},
+                {"type": "box", "half_size": [1, 1, 1], "center": [3, 0, 0], "rotation": {"axis": [0, 1, 0], "degrees": 30}}]})");
+  PackedScene packed = pack_scene(scene);
+  ASSERT_TRUE(packed.unrolled);
+  const std::string text = generate_kernel(packed, {}).text;
+  const auto calls = [&](const char* pattern) { return std::regex_search(text, std::regex(pattern)); };
+  EXPECT_TRUE(calls(R"(sphere_intersect\(\d+u, prism_to_local_unrotated\()"));
+  EXPECT_TRUE(calls(R"(box_intersect\(\d+u, prism_to_local\()"));
+  EXPECT_FALSE(calls(R"(box_intersect\(\d+u, prism_to_local_unrotated\()"));
+  EXPECT_TRUE(calls(R"(sphere_surface\(\d+u, prism_to_local_unrotated\()"));
+  EXPECT_TRUE(calls(R"(box_surface\(\d+u, prism_to_local\()"));
+  EXPECT_TRUE(calls(R"(each = prism_to_world_unrotated\(0u)"));
+  EXPECT_TRUE(calls(R"(each = prism_to_world\(1u)"));
+}
+
+// Texels through a buffer texture when the backend says they fit, else
+// through the storage buffer.
+TEST(KernelSource, TexelSamplerIsDefinedOnlyWhenAsked) {
+  Registry registry;
+  PackedScene packed = pack_scene(load(registry, kSpheresOnly));
+  KernelOptions options;
+  EXPECT_EQ(generate_kernel(packed, options).text.find("#define PRISM_TEXEL_SAMPLER"), std::string::npos);
+  options.texel_sampler = true;
+  EXPECT_NE(generate_kernel(packed, options).text.find("#define PRISM_TEXEL_SAMPLER 1\n"), std::string::npos);
 }
 
 TEST(KernelSource, TraceKernelLeavesShadingOut) {

@@ -49,7 +49,13 @@ wvec3 prism_reflect(wvec3 d, wvec3 n) { return normalize(d - WL(2.0) * dot(d, n)
 int prism_wrap(wreal i, int n) { return int(i - wreal(n) * floor(i / wreal(n))); }
 
 #if defined(PRISM_FEATURE_TEXTURES) || defined(PRISM_FEATURE_SKYBOX)
-vec4 prism_texel(ivec4 tex, int x, int y) { return prism_texels[tex.x + y * tex.y + x]; }
+vec4 prism_texel(ivec4 tex, int x, int y) {
+#ifdef PRISM_TEXEL_SAMPLER
+  return texelFetch(prism_texel_sampler, tex.x + y * tex.y + x);  // RGBA32F: the stored floats, unfiltered
+#else
+  return prism_texels[tex.x + y * tex.y + x];
+#endif
+}
 
 // Bilinear blend at texel coordinates (x, y): repeat wrap, or clamp to the
 // edge texels (cube-map faces).

@@ -31,6 +31,7 @@ class Buffer {
     glNamedBufferSubData(id_, GLintptr(offset), GLsizeiptr(bytes), data);
   }
   size_t bytes() const { return bytes_; }
+  GLuint id() const { return id_; }
 
  private:
   GLuint id_ = 0;

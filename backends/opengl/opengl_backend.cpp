@@ -39,7 +39,8 @@ using gpu::ms_since;
 // A GL 4.5 glue for the shared kernel: the tile origin is a plain uniform.
 constexpr const char* kApiGlue =
     "layout(location = 0) uniform ivec4 prism_tile;\n"
-    "#define PRISM_TILE_ORIGIN prism_tile\n";
+    "#define PRISM_TILE_ORIGIN prism_tile\n"
+    "#define PRISM_BINDING_TEXEL_SAMPLER 0\n";  // texture unit 0
 
 void check_gl(const char* what) {
   GLenum error = glGetError();
@@ -55,8 +56,15 @@ struct GpuState {
   gpu::PackedScene packed;
   std::array<gl::Buffer, gpu::kSceneBufferCount> buffers;  // by binding
   GLuint render_program = 0, trace_program = 0;
+  // Kernels read the texels through a buffer texture over the texel buffer
+  // (KernelOptions::texel_sampler) when they fit GL_MAX_TEXTURE_BUFFER_SIZE.
+  bool texel_sampler = false;
+  GLuint texel_texture = 0;
 
-  ~GpuState() { drop_programs(); }
+  ~GpuState() {
+    drop_programs();
+    if (texel_texture) glDeleteTextures(1, &texel_texture);
+  }
   void drop_programs() {
     if (render_program) glDeleteProgram(render_program);
     if (trace_program) glDeleteProgram(trace_program);
@@ -64,6 +72,18 @@ struct GpuState {
   }
   void bind_scene() const {
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) buffers[b].bind(b);
+    if (!texel_sampler) return;
+    glTextureBuffer(texel_texture, GL_RGBA32F, buffers[gpu::kBindTexels].id());  // the buffer may have been made again
+    glBindTextureUnit(0, texel_texture);
+  }
+  // Whether the texels fit a buffer texture here; programs built the other way are dropped.
+  void choose_texel_access() {
+    GLint max_texels = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
+    const bool fits = gpu::texel_buffer_allowed() && max_texels > 0 && packed.texels.size() <= size_t(max_texels);
+    if (fits != texel_sampler) drop_programs();
+    texel_sampler = fits;
+    if (texel_sampler && !texel_texture) glCreateTextures(GL_TEXTURE_BUFFER, 1, &texel_texture);
   }
   // Sends what `writes` names of scene buffer `b`, making the buffer again when it no longer fits.
   void write(uint32_t b, const gpu::BufferWrites& writes) {
@@ -136,6 +156,7 @@ class OpenGLBackend : public Backend {
       const gpu::SceneBuffer source = gpu::scene_buffer(p, b);
       state->buffers[b] = gl::Buffer(source.data, source.bytes());
     }
+    state->choose_texel_access();
     glFinish();
     check_gl("scene upload");
     stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
@@ -157,6 +178,7 @@ class OpenGLBackend : public Backend {
       check_limits(p, scene.source);
       for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) state_->write(b, u.buffers[b]);
       if (u.kernel) state_->drop_programs();
+      state_->choose_texel_access();
       glFinish();
       check_gl("scene update");
       stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
@@ -258,7 +280,9 @@ class OpenGLBackend : public Backend {
     if (!state_) throw RuntimeError("opengl backend: render or trace before prepare");
     GLuint& program = trace ? state_->trace_program : state_->render_program;
     if (program) return program;
-    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, gpu::kernel_options(trace, kApiGlue));
+    gpu::KernelOptions options = gpu::kernel_options(trace, kApiGlue);
+    options.texel_sampler = state_->texel_sampler;
+    gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, options);
     gl::ProgramStats build;
     program = gl::build_program(kernel.text, context_->driver_identity(), build);
     auto start = std::chrono::steady_clock::now();

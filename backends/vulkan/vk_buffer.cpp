@@ -97,6 +97,34 @@ void Buffer::release() {
   mapped_ = nullptr;
 }
 
+TexelView::TexelView(const Context& context, const Buffer& buffer, const std::string& what) : context_(&context) {
+  auto info = make<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
+  info.buffer = buffer.handle();
+  info.format = VK_FORMAT_R32G32B32A32_SFLOAT;  // uniform texel buffers of it are mandatory in Vulkan 1.0
+  info.offset = 0;
+  info.range = buffer.size() / 16 * 16;
+  check(context.api().vkCreateBufferView(context.device(), &info, nullptr, &view_), what);
+}
+
+TexelView::~TexelView() { release(); }
+
+TexelView::TexelView(TexelView&& other) noexcept { *this = std::move(other); }
+
+TexelView& TexelView::operator=(TexelView&& other) noexcept {
+  if (this != &other) {
+    release();
+    context_ = std::exchange(other.context_, nullptr);
+    view_ = std::exchange(other.view_, VK_NULL_HANDLE);
+  }
+  return *this;
+}
+
+void TexelView::release() {
+  if (!context_ || context_->abandoned() || !view_) return;
+  context_->api().vkDestroyBufferView(context_->device(), view_, nullptr);
+  view_ = VK_NULL_HANDLE;
+}
+
 Commands::Commands(const Context& context) : context_(context) {
   const Api& api = context.api();
   auto pool = make<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
@@ -157,8 +185,11 @@ void barrier(const Api& api, VkCommandBuffer commands, VkPipelineStageFlags src_
 
 Buffer upload_storage(const Context& context, Commands& commands, const void* bytes, size_t size,
                       const std::string& what) {
-  Buffer device(context, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT, Memory::Device,
-                what);
+  // Also a uniform texel buffer: the texels are read through a TexelView.
+  Buffer device(context, size,
+                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
+                    VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                Memory::Device, what);
   if (size == 0) return device;
   Buffer staging(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::Staging, what);
   std::memcpy(staging.mapped(), bytes, size);

@@ -41,6 +41,25 @@ class Buffer {
   void* mapped_ = nullptr;
 };
 
+// A view of a whole buffer as RGBA32F texels, for a uniform texel buffer
+// descriptor (the kernels' samplerBuffer).
+class TexelView {
+ public:
+  TexelView() = default;
+  TexelView(const Context& context, const Buffer& buffer, const std::string& what);
+  ~TexelView();
+  TexelView(TexelView&& other) noexcept;
+  TexelView& operator=(TexelView&& other) noexcept;
+
+  VkBufferView handle() const { return view_; }
+  explicit operator bool() const { return view_ != VK_NULL_HANDLE; }
+
+ private:
+  void release();
+  const Context* context_ = nullptr;
+  VkBufferView view_ = VK_NULL_HANDLE;
+};
+
 // One primary command buffer and a fence: record, submit, wait.
 class Commands {
  public:

@@ -9,12 +9,16 @@
 #include <filesystem>
 #include <string>
 
+#include "gpu_layout.hpp"
 #include "vk_context.hpp"
 
 namespace prism::vk {
 
-// Every kernel's interface: storage buffers 0..7 in set 0, and the tile
-// origin (an ivec4) as a push constant.
+// Every kernel's interface: storage buffers 0..7 in set 0, the texels as a
+// uniform texel buffer at binding 8 (gpu::KernelOptions::texel_sampler),
+// and the tile origin (an ivec4) as a push constant.
+constexpr uint32_t kTexelViewBinding = gpu::kBindingCount;
+
 class PipelineLayout {
  public:
   explicit PipelineLayout(const Context& context);

@@ -37,7 +37,9 @@ using gpu::ms_since;
 // The Vulkan glue for the shared kernel: the tile origin is a push constant.
 constexpr const char* kApiGlue =
     "layout(push_constant) uniform PrismPush { ivec4 tile; } prism_push;\n"
-    "#define PRISM_TILE_ORIGIN prism_push.tile\n";
+    "#define PRISM_TILE_ORIGIN prism_push.tile\n"
+    "#define PRISM_BINDING_TEXEL_SAMPLER 8\n";
+static_assert(vk::kTexelViewBinding == 8, "the glue's texel binding");
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
@@ -52,6 +54,9 @@ struct Kernel {
 struct DeviceScene {
   gpu::PackedScene packed;
   std::array<vk::Buffer, gpu::kSceneBufferCount> buffers;  // by binding
+  // The texel buffer as texels, when they fit maxTexelBufferElements: the
+  // kernels then read them through it (gpu::KernelOptions::texel_sampler).
+  vk::TexelView texels;
   Kernel render, trace;
 };
 
@@ -125,6 +130,7 @@ class VulkanBackend : public Backend {
     const gpu::PackedScene& p = s->packed;
     check_limits(p, scene.source);
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) s->buffers[b] = upload(gpu::scene_buffer(p, b));
+    view_texels(*s);
     stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
     gpu::count_prepare(stats_, p);
     scene_ = std::move(s);
@@ -153,7 +159,9 @@ class VulkanBackend : public Backend {
           writes.push_back({&scene_->buffers[b], r.offset, r.data, r.size});
       }
       vk::write_storage(*context_, *commands_, writes, "update of the scene");
-      if (u.kernel) drop_pipelines();
+      const bool sampled = bool(scene_->texels);
+      view_texels(*scene_);
+      if (u.kernel || sampled != bool(scene_->texels)) drop_pipelines();
       stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
       gpu::count_update(stats_, u);
     } catch (...) {
@@ -255,6 +263,14 @@ class VulkanBackend : public Backend {
     return vk::upload_storage(*context_, *commands_, source.data, source.bytes(), std::string("upload of the ") + source.name);
   }
 
+  // The texel view of `s`'s texel buffer (made again: the buffer may be
+  // new), or none when the texels exceed the device's texel-buffer limit.
+  void view_texels(DeviceScene& s) {
+    s.texels = vk::TexelView();
+    if (gpu::texel_buffer_allowed() && s.packed.texels.size() <= context_->properties().limits.maxTexelBufferElements)
+      s.texels = vk::TexelView(*context_, s.buffers[gpu::kBindTexels], "the texel buffer's view");
+  }
+
   // Every command waits for its fence, so no pipeline is in use here.
   void drop_pipelines() {
     for (Kernel* kernel : {&scene_->render, &scene_->trace}) {
@@ -270,11 +286,12 @@ class VulkanBackend : public Backend {
 
   // One descriptor set per kernel (render and trace), reallocated per scene.
   void create_descriptor_pool() {
-    const VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * gpu::kBindingCount};
+    const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * gpu::kBindingCount},
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 2}};
     auto info = vk::make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     info.maxSets = 2;
-    info.poolSizeCount = 1;
-    info.pPoolSizes = &size;
+    info.poolSizeCount = 2;
+    info.pPoolSizes = sizes;
     vk::check(api().vkCreateDescriptorPool(context_->device(), &info, nullptr, &pool_), "descriptor pool creation");
   }
 
@@ -289,7 +306,9 @@ class VulkanBackend : public Backend {
     if (!scene_) throw RuntimeError("vulkan backend: render or trace before prepare");
     Kernel& slot = trace ? scene_->trace : scene_->render;
     if (slot.pipeline) return slot;
-    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, gpu::kernel_options(trace, kApiGlue));
+    gpu::KernelOptions options = gpu::kernel_options(trace, kApiGlue);
+    options.texel_sampler = bool(scene_->texels);
+    const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, options);
     vk::PipelineStats build;
     slot.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
     if (!slot.descriptors) slot.descriptors = allocate_descriptors();
@@ -321,14 +340,15 @@ class VulkanBackend : public Backend {
     return set;
   }
 
-  // Points the kernel's eight bindings at the scene, the frame and the output.
+  // Points the kernel's eight buffer bindings at the scene, the frame and
+  // the output, and its texel binding at the texel view where there is one.
   void bind(const Kernel& kernel, const vk::Buffer& frame, const vk::Buffer& output) {
     const vk::Buffer* buffers[gpu::kBindingCount] = {};
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) buffers[b] = &scene_->buffers[b];
     buffers[gpu::kBindFrame] = &frame;
     buffers[gpu::kBindOutput] = &output;
     VkDescriptorBufferInfo infos[gpu::kBindingCount];
-    VkWriteDescriptorSet writes[gpu::kBindingCount];
+    VkWriteDescriptorSet writes[gpu::kBindingCount + 1];
     for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
       infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
       writes[b] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
@@ -338,7 +358,18 @@ class VulkanBackend : public Backend {
       writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       writes[b].pBufferInfo = &infos[b];
     }
-    api().vkUpdateDescriptorSets(context_->device(), gpu::kBindingCount, writes, 0, nullptr);
+    uint32_t count = gpu::kBindingCount;
+    const VkBufferView texel_view = scene_->texels.handle();
+    if (scene_->texels) {
+      writes[count] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      writes[count].dstSet = kernel.descriptors;
+      writes[count].dstBinding = vk::kTexelViewBinding;
+      writes[count].descriptorCount = 1;
+      writes[count].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      writes[count].pTexelBufferView = &texel_view;
+      ++count;
+    }
+    api().vkUpdateDescriptorSets(context_->device(), count, writes, 0, nullptr);
   }
 
   void dispatch(VkCommandBuffer cb, const Kernel& kernel, const int32_t tile[4], uint32_t groups_x, uint32_t groups_y) {

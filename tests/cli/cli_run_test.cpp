@@ -608,5 +608,36 @@ TEST_F(CliTest, ScaledQuadricCoefficientsTraceTheSameSphere) {
   }
 }
 
+// The GPU backends read texels through a buffer texture where they fit
+// (gpu::KernelOptions::texel_sampler), else through the storage buffer:
+// the same stored floats, unfiltered, so the showcase (object textures and
+// a cube-map sky) renders byte for byte the same either way.
+class GpuTexels : public CliTest, public testing::WithParamInterface<std::string> {};
+
+TEST_P(GpuTexels, BufferTextureAndStorageBufferRenderTheSameImage) {
+  if (!prism::test::require_backend_or_skip(GetParam())) return;
+  const std::string scene = (prism::test::source_dir() / "scenes/showcase.json").string();
+  const auto render = [&](const std::string& out) {
+    RunResult r = run({"render", scene, "-b", GetParam(), "--width", "160", "--height", "90", "--spp", "1", "-o",
+                       path(out).string(), "--stats", path(out + ".json").string()});
+    EXPECT_TRUE(ExitedWith(r, 0));
+    return read_file(path(out));
+  };
+  const std::string sampled = render("sampled.png");
+  ::setenv("PRISM_GPU_TEXEL_BUFFER", "0", 1);
+  const std::string stored = render("stored.png");
+  ::unsetenv("PRISM_GPU_TEXEL_BUFFER");
+  EXPECT_FALSE(sampled.empty());
+  EXPECT_TRUE(sampled == stored) << "the two texel paths rendered different images";
+  // The two runs built different kernels (a different kernel hash).
+  const auto kernel_file = [&](const std::string& out) {
+    return nlohmann::json::parse(read_file(path(out + ".json")))["info"].value("program_cache_file", "");
+  };
+  EXPECT_NE(kernel_file("sampled.png"), kernel_file("stored.png"));
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, GpuTexels, testing::ValuesIn(prism::test::gpu_backend_names()),
+                         prism::test::backend_param_name);
+
 }  // namespace
 }  // namespace prism::cli_test
