@@ -14,6 +14,11 @@
 
 namespace prism::gpu {
 
+size_t unrolled_objects_limit() {
+  static const auto limit = size_t(env_number("PRISM_GPU_UNROLLED_OBJECTS", double(kUnrolledObjects), 0.0, 64.0));
+  return limit;
+}
+
 namespace {
 
 struct FeatureInfo {
@@ -157,7 +162,7 @@ void pack_objects(const Scene& scene, std::span<const PrismPrimitiveDesc* const>
   out.types = std::move(table.types);
   out.bounded_objects = int(out.bounded_ids.size());
   out.bvh_depth = out.bvh.depth;
-  out.unrolled = out.objects.size() <= kUnrolledObjects;
+  out.unrolled = out.objects.size() <= unrolled_objects_limit();
 }
 
 void pack_textures(const Scene& scene, PackedScene& out) {

@@ -84,6 +84,9 @@ void refresh_float_world(PackedScene& packed);
 // Up to this many objects the kernel tests them all in turn, unrolled (measured:
 // docs/architecture.md, "Objects unrolled"); above it walks the BVH.
 constexpr size_t kUnrolledObjects = 16;
+// kUnrolledObjects, or PRISM_GPU_UNROLLED_OBJECTS (0 to 64) to measure the
+// crossover again.
+size_t unrolled_objects_limit();
 
 // Up to this many lights the kernel reads each at a fixed offset (prism_light, gpu/scene.glsl).
 constexpr size_t kLightsByConstant = 16;
