@@ -20,6 +20,7 @@ KernelOptions kernel_options(bool trace, const char* api_glue) {
 }
 
 bool texel_buffer_allowed() { return env_number("PRISM_GPU_TEXEL_BUFFER", 1.0, 0.0, 1.0) != 0.0; }
+bool material_block_allowed() { return env_number("PRISM_GPU_MATERIAL_BLOCK", 1.0, 0.0, 1.0) != 0.0; }
 
 static_assert(std::size(kRayKindNames) <= kRayCounterCount);
 

@@ -34,6 +34,9 @@ KernelOptions kernel_options(bool trace, const char* api_glue);
 // (KernelOptions::texel_sampler) where they fit: yes, unless
 // PRISM_GPU_TEXEL_BUFFER=0 (the tests compare the two paths).
 bool texel_buffer_allowed();
+// The same for the materials' uniform block (KernelOptions::material_block):
+// PRISM_GPU_MATERIAL_BLOCK=0 turns it off.
+bool material_block_allowed();
 
 struct Tile {
   int x0, y0, width, height;

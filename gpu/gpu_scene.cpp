@@ -302,7 +302,8 @@ PackedScene pack_scene(const Scene& scene, std::span<const PrismPrimitiveDesc* c
 }
 
 std::vector<uint32_t> kernel_layout(const PackedScene& packed) {
-  std::vector<uint32_t> layout{uint32_t(packed.lights.size()), packed.unrolled ? 1u : 0u};
+  // The material count sizes the kernel's material block (KernelOptions::material_block).
+  std::vector<uint32_t> layout{uint32_t(packed.lights.size()), uint32_t(packed.materials.size()), packed.unrolled ? 1u : 0u};
   if (!packed.unrolled) return layout;
   for (const GpuObject& o : packed.objects) layout.insert(layout.end(), {o.type, o.record, uint32_t(o.id), o.rotated});
   return layout;

@@ -92,8 +92,8 @@ size_t unrolled_objects_limit();
 constexpr size_t kLightsByConstant = 16;
 
 // What of the packing the generated kernel's source holds (its slots' types,
-// records and ids when unrolled; the light count): a change there needs a
-// new kernel.
+// records, ids and rotations when unrolled; the light and material counts):
+// a change there needs a new kernel.
 std::vector<uint32_t> kernel_layout(const PackedScene& packed);
 
 // Packs `scene`. Throws RuntimeError when an object's plugin has no GLSL.

@@ -115,6 +115,8 @@ void append_defines(std::ostringstream& out, const PackedScene& scene, const std
   out << "#define PRISM_GROUP_SCRAMBLE " << kGroupScramblePrime << "u\n";
   if (options.trace) out << "#define PRISM_MODE_TRACE 1\n";
   if (options.texel_sampler) out << "#define PRISM_TEXEL_SAMPLER 1\n";
+  if (options.material_block)
+    out << "#define PRISM_MATERIAL_BLOCK 1\n#define PRISM_MATERIAL_COUNT " << std::max<size_t>(scene.materials.size(), 1) << "\n";
   if (scene.float_world) out << "#define PRISM_WORLD_FLOAT 1\n";
   if (scene.float_world) out << "#define PRISM_REAL_FLOAT 1\n";
   if (scene.unrolled) {

@@ -30,6 +30,11 @@ struct KernelOptions {
   // buffer at a per-lane index lane by lane. The backend sets it when the
   // texels fit the device's texel-buffer limit.
   bool texel_sampler = false;
+  // Materials in a uniform block (the glue defines its binding as
+  // PRISM_BINDING_MATERIAL_BLOCK) instead of the storage buffer: a CPU
+  // driver gathers a uniform read at a per-lane index as a vector. The
+  // backend sets it when the materials fit its uniform-block limit.
+  bool material_block = false;
   int local_size_x = 8;
   int local_size_y = 8;
 };

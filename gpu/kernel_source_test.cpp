@@ -88,6 +88,21 @@ TEST(KernelSource, TexelSamplerIsDefinedOnlyWhenAsked) {
   EXPECT_NE(generate_kernel(packed, options).text.find("#define PRISM_TEXEL_SAMPLER 1\n"), std::string::npos);
 }
 
+// Materials in a uniform block sized by the scene's material count (the
+// default material included) when the backend says they fit.
+TEST(KernelSource, MaterialBlockIsSizedByTheMaterials) {
+  Registry registry;
+  PackedScene packed = pack_scene(load(registry, R"({"prism": 1, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0]},
+    "materials": {"red": {"color": [1, 0, 0]}, "blue": {"color": [0, 0, 1]}},
+    "objects": [{"type": "sphere", "radius": 1, "material": "red"}, {"type": "sphere", "radius": 1, "center": [2, 0, 0], "material": "blue"}]})"));
+  ASSERT_EQ(packed.materials.size(), 3u);
+  KernelOptions options;
+  EXPECT_EQ(generate_kernel(packed, options).text.find("#define PRISM_MATERIAL_BLOCK"), std::string::npos);
+  options.material_block = true;
+  const std::string text = generate_kernel(packed, options).text;
+  EXPECT_NE(text.find("#define PRISM_MATERIAL_BLOCK 1\n#define PRISM_MATERIAL_COUNT 3\n"), std::string::npos);
+}
+
 TEST(KernelSource, TraceKernelLeavesShadingOut) {
   Registry registry;
   Scene scene = load(registry, kSpheresOnly);

@@ -78,7 +78,16 @@ struct PrismMaterial {
   vec4 uv;      // uv_scale, uv_offset
   ivec4 texture;  // texel offset (-1: none), width, height
 };
+// The materials: a uniform block over the same buffer where they fit
+// (PRISM_MATERIAL_BLOCK, KernelOptions::material_block; std140 lays the
+// struct out as std430 does: five 16-byte members), else the storage buffer.
+#ifdef PRISM_MATERIAL_BLOCK
+layout(std140, binding = PRISM_BINDING_MATERIAL_BLOCK) uniform PrismMaterialBlock {
+  PrismMaterial prism_materials[PRISM_MATERIAL_COUNT];
+};
+#else
 layout(std430, binding = PRISM_BINDING_MATERIALS) readonly buffer PrismMaterialBuffer { PrismMaterial prism_materials[]; };
+#endif
 
 struct PrismLight {
   wvec4 position;  // point: position, radius; directional: direction

@@ -40,7 +40,8 @@ using gpu::ms_since;
 constexpr const char* kApiGlue =
     "layout(location = 0) uniform ivec4 prism_tile;\n"
     "#define PRISM_TILE_ORIGIN prism_tile\n"
-    "#define PRISM_BINDING_TEXEL_SAMPLER 0\n";  // texture unit 0
+    "#define PRISM_BINDING_TEXEL_SAMPLER 0\n"   // texture unit 0
+    "#define PRISM_BINDING_MATERIAL_BLOCK 0\n";  // uniform block binding 0
 
 void check_gl(const char* what) {
   GLenum error = glGetError();
@@ -60,6 +61,8 @@ struct GpuState {
   // (KernelOptions::texel_sampler) when they fit GL_MAX_TEXTURE_BUFFER_SIZE.
   bool texel_sampler = false;
   GLuint texel_texture = 0;
+  // ... and the materials through a uniform block when they fit GL_MAX_UNIFORM_BLOCK_SIZE.
+  bool material_block = false;
 
   ~GpuState() {
     drop_programs();
@@ -72,6 +75,7 @@ struct GpuState {
   }
   void bind_scene() const {
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) buffers[b].bind(b);
+    if (material_block) glBindBufferBase(GL_UNIFORM_BUFFER, 0, buffers[gpu::kBindMaterials].id());
     if (!texel_sampler) return;
     glTextureBuffer(texel_texture, GL_RGBA32F, buffers[gpu::kBindTexels].id());  // the buffer may have been made again
     glBindTextureUnit(0, texel_texture);
@@ -83,6 +87,12 @@ struct GpuState {
     const bool fits = gpu::texel_buffer_allowed() && max_texels > 0 && packed.texels.size() <= size_t(max_texels);
     if (fits != texel_sampler) drop_programs();
     texel_sampler = fits;
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_UNIFORM_BLOCK_SIZE, &max_block);
+    const gpu::SceneBuffer materials = gpu::scene_buffer(packed, gpu::kBindMaterials);
+    const bool block = gpu::material_block_allowed() && materials.bytes() <= uint64_t(std::max<GLint64>(max_block, 0));
+    if (block != material_block) drop_programs();
+    material_block = block;
     if (texel_sampler && !texel_texture) glCreateTextures(GL_TEXTURE_BUFFER, 1, &texel_texture);
   }
   // Sends what `writes` names of scene buffer `b`, making the buffer again when it no longer fits.
@@ -282,6 +292,7 @@ class OpenGLBackend : public Backend {
     if (program) return program;
     gpu::KernelOptions options = gpu::kernel_options(trace, kApiGlue);
     options.texel_sampler = state_->texel_sampler;
+    options.material_block = state_->material_block;
     gpu::KernelSource kernel = gpu::generate_kernel(state_->packed, options);
     gl::ProgramStats build;
     program = gl::build_program(kernel.text, context_->driver_identity(), build);

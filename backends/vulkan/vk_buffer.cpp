@@ -185,10 +185,11 @@ void barrier(const Api& api, VkCommandBuffer commands, VkPipelineStageFlags src_
 
 Buffer upload_storage(const Context& context, Commands& commands, const void* bytes, size_t size,
                       const std::string& what) {
-  // Also a uniform texel buffer: the texels are read through a TexelView.
+  // Also a uniform texel buffer (the texels are read through a TexelView)
+  // and a uniform buffer (the materials' block).
   Buffer device(context, size,
                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT |
-                    VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                    VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                 Memory::Device, what);
   if (size == 0) return device;
   Buffer staging(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, Memory::Staging, what);

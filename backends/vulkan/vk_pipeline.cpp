@@ -147,13 +147,15 @@ VkPipeline create_pipeline(const Context& context, const PipelineLayout& layout,
 
 PipelineLayout::PipelineLayout(const Context& context) : context_(context) {
   const Api& api = context.api();
-  VkDescriptorSetLayoutBinding bindings[gpu::kBindingCount + 1];
+  VkDescriptorSetLayoutBinding bindings[kLayoutBindingCount];
   for (uint32_t b = 0; b < gpu::kBindingCount; ++b)
     bindings[b] = {b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   bindings[kTexelViewBinding] = {kTexelViewBinding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 1,
                                  VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  bindings[kMaterialBlockBinding] = {kMaterialBlockBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                                     VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
   auto sets = make<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-  sets.bindingCount = gpu::kBindingCount + 1;
+  sets.bindingCount = kLayoutBindingCount;
   sets.pBindings = bindings;
   check(api.vkCreateDescriptorSetLayout(context.device(), &sets, nullptr, &sets_), "descriptor set layout creation");
   const VkPushConstantRange tile{VK_SHADER_STAGE_COMPUTE_BIT, 0, 4 * sizeof(int32_t)};

@@ -16,8 +16,12 @@ namespace prism::vk {
 
 // Every kernel's interface: storage buffers 0..7 in set 0, the texels as a
 // uniform texel buffer at binding 8 (gpu::KernelOptions::texel_sampler),
-// and the tile origin (an ivec4) as a push constant.
+// the materials as a uniform buffer at binding 9
+// (gpu::KernelOptions::material_block), and the tile origin (an ivec4) as a
+// push constant.
 constexpr uint32_t kTexelViewBinding = gpu::kBindingCount;
+constexpr uint32_t kMaterialBlockBinding = gpu::kBindingCount + 1;
+constexpr uint32_t kLayoutBindingCount = gpu::kBindingCount + 2;
 
 class PipelineLayout {
  public:

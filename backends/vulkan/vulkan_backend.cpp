@@ -38,8 +38,9 @@ using gpu::ms_since;
 constexpr const char* kApiGlue =
     "layout(push_constant) uniform PrismPush { ivec4 tile; } prism_push;\n"
     "#define PRISM_TILE_ORIGIN prism_push.tile\n"
-    "#define PRISM_BINDING_TEXEL_SAMPLER 8\n";
-static_assert(vk::kTexelViewBinding == 8, "the glue's texel binding");
+    "#define PRISM_BINDING_TEXEL_SAMPLER 8\n"
+    "#define PRISM_BINDING_MATERIAL_BLOCK 9\n";
+static_assert(vk::kTexelViewBinding == 8 && vk::kMaterialBlockBinding == 9, "the glue's bindings");
 
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
@@ -57,6 +58,9 @@ struct DeviceScene {
   // The texel buffer as texels, when they fit maxTexelBufferElements: the
   // kernels then read them through it (gpu::KernelOptions::texel_sampler).
   vk::TexelView texels;
+  // The materials' bytes when the kernels read them as a uniform block (they
+  // fit maxUniformBufferRange; gpu::KernelOptions::material_block), else 0.
+  VkDeviceSize material_block = 0;
   Kernel render, trace;
 };
 
@@ -131,6 +135,7 @@ class VulkanBackend : public Backend {
     check_limits(p, scene.source);
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) s->buffers[b] = upload(gpu::scene_buffer(p, b));
     view_texels(*s);
+    choose_material_block(*s);
     stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
     gpu::count_prepare(stats_, p);
     scene_ = std::move(s);
@@ -159,9 +164,10 @@ class VulkanBackend : public Backend {
           writes.push_back({&scene_->buffers[b], r.offset, r.data, r.size});
       }
       vk::write_storage(*context_, *commands_, writes, "update of the scene");
-      const bool sampled = bool(scene_->texels);
+      const bool sampled = bool(scene_->texels), block = scene_->material_block != 0;
       view_texels(*scene_);
-      if (u.kernel || sampled != bool(scene_->texels)) drop_pipelines();
+      choose_material_block(*scene_);
+      if (u.kernel || sampled != bool(scene_->texels) || block != (scene_->material_block != 0)) drop_pipelines();
       stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
       gpu::count_update(stats_, u);
     } catch (...) {
@@ -271,6 +277,12 @@ class VulkanBackend : public Backend {
       s.texels = vk::TexelView(*context_, s.buffers[gpu::kBindTexels], "the texel buffer's view");
   }
 
+  void choose_material_block(DeviceScene& s) {
+    const VkDeviceSize bytes = gpu::scene_buffer(s.packed, gpu::kBindMaterials).bytes();
+    const bool fits = bytes > 0 && bytes <= context_->properties().limits.maxUniformBufferRange;
+    s.material_block = gpu::material_block_allowed() && fits ? bytes : 0;
+  }
+
   // Every command waits for its fence, so no pipeline is in use here.
   void drop_pipelines() {
     for (Kernel* kernel : {&scene_->render, &scene_->trace}) {
@@ -287,10 +299,11 @@ class VulkanBackend : public Backend {
   // One descriptor set per kernel (render and trace), reallocated per scene.
   void create_descriptor_pool() {
     const VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * gpu::kBindingCount},
-                                          {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 2}};
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 2},
+                                          {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 2}};
     auto info = vk::make<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     info.maxSets = 2;
-    info.poolSizeCount = 2;
+    info.poolSizeCount = 3;
     info.pPoolSizes = sizes;
     vk::check(api().vkCreateDescriptorPool(context_->device(), &info, nullptr, &pool_), "descriptor pool creation");
   }
@@ -308,6 +321,7 @@ class VulkanBackend : public Backend {
     if (slot.pipeline) return slot;
     gpu::KernelOptions options = gpu::kernel_options(trace, kApiGlue);
     options.texel_sampler = bool(scene_->texels);
+    options.material_block = scene_->material_block != 0;
     const gpu::KernelSource source = gpu::generate_kernel(scene_->packed, options);
     vk::PipelineStats build;
     slot.pipeline = vk::build_pipeline(*context_, *layout_, source.text, build);
@@ -341,14 +355,15 @@ class VulkanBackend : public Backend {
   }
 
   // Points the kernel's eight buffer bindings at the scene, the frame and
-  // the output, and its texel binding at the texel view where there is one.
+  // the output, its texel binding at the texel view where there is one, and
+  // its material block at the materials where they fit one.
   void bind(const Kernel& kernel, const vk::Buffer& frame, const vk::Buffer& output) {
     const vk::Buffer* buffers[gpu::kBindingCount] = {};
     for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) buffers[b] = &scene_->buffers[b];
     buffers[gpu::kBindFrame] = &frame;
     buffers[gpu::kBindOutput] = &output;
     VkDescriptorBufferInfo infos[gpu::kBindingCount];
-    VkWriteDescriptorSet writes[gpu::kBindingCount + 1];
+    VkWriteDescriptorSet writes[vk::kLayoutBindingCount];
     for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
       infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
       writes[b] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
@@ -367,6 +382,16 @@ class VulkanBackend : public Backend {
       writes[count].descriptorCount = 1;
       writes[count].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
       writes[count].pTexelBufferView = &texel_view;
+      ++count;
+    }
+    const VkDescriptorBufferInfo material_info{scene_->buffers[gpu::kBindMaterials].handle(), 0, scene_->material_block};
+    if (scene_->material_block) {
+      writes[count] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      writes[count].dstSet = kernel.descriptors;
+      writes[count].dstBinding = vk::kMaterialBlockBinding;
+      writes[count].descriptorCount = 1;
+      writes[count].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+      writes[count].pBufferInfo = &material_info;
       ++count;
     }
     api().vkUpdateDescriptorSets(context_->device(), count, writes, 0, nullptr);

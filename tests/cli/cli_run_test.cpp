@@ -608,13 +608,14 @@ TEST_F(CliTest, ScaledQuadricCoefficientsTraceTheSameSphere) {
   }
 }
 
-// The GPU backends read texels through a buffer texture where they fit
-// (gpu::KernelOptions::texel_sampler), else through the storage buffer:
-// the same stored floats, unfiltered, so the showcase (object textures and
-// a cube-map sky) renders byte for byte the same either way.
-class GpuTexels : public CliTest, public testing::WithParamInterface<std::string> {};
+// The GPU backends read texels through a buffer texture and materials
+// through a uniform block where they fit (gpu::KernelOptions::texel_sampler,
+// material_block), else through the storage buffers: the same stored
+// numbers, so the showcase (textured, a cube-map sky, nine materials)
+// renders byte for byte the same every way.
+class GpuSceneReads : public CliTest, public testing::WithParamInterface<std::string> {};
 
-TEST_P(GpuTexels, BufferTextureAndStorageBufferRenderTheSameImage) {
+TEST_P(GpuSceneReads, UniformPathsAndStorageBuffersRenderTheSameImage) {
   if (!prism::test::require_backend_or_skip(GetParam())) return;
   const std::string scene = (prism::test::source_dir() / "scenes/showcase.json").string();
   const auto render = [&](const std::string& out) {
@@ -623,20 +624,26 @@ TEST_P(GpuTexels, BufferTextureAndStorageBufferRenderTheSameImage) {
     EXPECT_TRUE(ExitedWith(r, 0));
     return read_file(path(out));
   };
-  const std::string sampled = render("sampled.png");
+  const std::string uniform = render("uniform.png");
   ::setenv("PRISM_GPU_TEXEL_BUFFER", "0", 1);
-  const std::string stored = render("stored.png");
+  const std::string texels_stored = render("texels_stored.png");
   ::unsetenv("PRISM_GPU_TEXEL_BUFFER");
-  EXPECT_FALSE(sampled.empty());
-  EXPECT_TRUE(sampled == stored) << "the two texel paths rendered different images";
-  // The two runs built different kernels (a different kernel hash).
+  ::setenv("PRISM_GPU_MATERIAL_BLOCK", "0", 1);
+  const std::string materials_stored = render("materials_stored.png");
+  ::unsetenv("PRISM_GPU_MATERIAL_BLOCK");
+  EXPECT_FALSE(uniform.empty());
+  EXPECT_TRUE(uniform == texels_stored) << "the two texel paths rendered different images";
+  EXPECT_TRUE(uniform == materials_stored) << "the two material paths rendered different images";
+  // Each run built its own kernel (a different kernel hash).
   const auto kernel_file = [&](const std::string& out) {
     return nlohmann::json::parse(read_file(path(out + ".json")))["info"].value("program_cache_file", "");
   };
-  EXPECT_NE(kernel_file("sampled.png"), kernel_file("stored.png"));
+  const std::set<std::string> kernels = {kernel_file("uniform.png"), kernel_file("texels_stored.png"),
+                                         kernel_file("materials_stored.png")};
+  EXPECT_EQ(kernels.size(), 3u);
 }
 
-INSTANTIATE_TEST_SUITE_P(Backends, GpuTexels, testing::ValuesIn(prism::test::gpu_backend_names()),
+INSTANTIATE_TEST_SUITE_P(Backends, GpuSceneReads, testing::ValuesIn(prism::test::gpu_backend_names()),
                          prism::test::backend_param_name);
 
 }  // namespace
