@@ -86,7 +86,7 @@ void main() {
   PrismSample first;
   int k = 0;
   prism_start_sample(k);
-  PrismPathState st = prism_start_path(prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]));
+  PrismPathState st = prism_start_path(prism_camera_ray(pixel.x, pixel.y, prism_frame_buffer.sample_offsets[k]));
   for (;;) {
     if (prism_pass(st)) continue;
     st.result.radiance = st.radiance;
@@ -95,7 +95,7 @@ void main() {
     sum += st.radiance;
     if (++k == prism_frame.size.z) break;
     prism_start_sample(k);
-    st = prism_start_path(prism_camera_ray(pixel.x, pixel.y, prism_frame.sample_offsets[k]));
+    st = prism_start_path(prism_camera_ray(pixel.x, pixel.y, prism_frame_buffer.sample_offsets[k]));
   }
   uint index = uint(local.y * PRISM_TILE_ORIGIN.z + local.x);
   prism_pixels[index].rgb_id = vec4(sum / float(prism_frame.size.z), float(first.first_id));

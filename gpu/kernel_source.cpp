@@ -89,7 +89,7 @@ std::string unrolled_objects(const PackedScene& scene) {
 // kernel's object tests read, copied once at its start; and the lights.
 std::string cache_fill(const PackedScene& scene) {
   std::ostringstream o;
-  o << "void prism_fill_caches() {\n";
+  o << "void prism_fill_caches() {\n  prism_copy_frame();\n";
   if (scene.unrolled) {
     for (size_t slot = 0; slot < scene.objects.size(); ++slot)
       o << "  prism_object_cache[" << slot << "] = prism_objects[" << slot << "];\n";
