@@ -128,7 +128,10 @@ layout(std430, binding = PRISM_BINDING_TEXELS) readonly buffer PrismTexelBuffer 
 #endif
 #endif
 
-layout(std430, binding = PRISM_BINDING_FRAME) readonly buffer PrismFrameBuffer {
+// The frame's constants (gpu_layout.hpp: GpuFrame, GpuFrameF, whose sizes
+// are multiples of the struct's std430 alignment, so the sample offsets
+// follow at the same offset as in a flat block).
+struct PrismFrame {
   wvec4 camera_position;
   wvec4 camera_forward;
   wvec4 camera_right;
@@ -145,47 +148,20 @@ layout(std430, binding = PRISM_BINDING_FRAME) readonly buffer PrismFrameBuffer {
   ivec4 cubemap[6];
   vec4 anchor;  // a float world's positions are relative to it (zero in a double world)
   vec4 pad1;
+};
+
+layout(std430, binding = PRISM_BINDING_FRAME) readonly buffer PrismFrameBuffer {
+  PrismFrame constants;
   wvec2 sample_offsets[];
 } prism_frame_buffer;
 
-// The frame's constants, copied from the buffer once at the kernel's start
+// The constants copied from the buffer once at the kernel's start
 // (prism_copy_frame, called first by prism_fill_caches): a CPU driver reads
 // a storage buffer with a bounds check and a branch per number, in every
 // pass of a loop, where this copy is read like any variable.
-struct PrismFrame {
-  wvec4 camera_position;
-  wvec4 camera_forward;
-  wvec4 camera_right;
-  wvec4 camera_up;
-  wreal tan_half_fov;
-  wreal aspect;
-  vec4 ambient;
-  vec4 shadow_ambient;
-  vec4 background;
-  ivec4 size;
-  ivec4 counts;
-  ivec4 flags;
-  ivec4 cubemap[6];
-  vec4 anchor;
-};
 PrismFrame prism_frame;
 
-void prism_copy_frame() {
-  prism_frame.camera_position = prism_frame_buffer.camera_position;
-  prism_frame.camera_forward = prism_frame_buffer.camera_forward;
-  prism_frame.camera_right = prism_frame_buffer.camera_right;
-  prism_frame.camera_up = prism_frame_buffer.camera_up;
-  prism_frame.tan_half_fov = prism_frame_buffer.tan_half_fov;
-  prism_frame.aspect = prism_frame_buffer.aspect;
-  prism_frame.ambient = prism_frame_buffer.ambient;
-  prism_frame.shadow_ambient = prism_frame_buffer.shadow_ambient;
-  prism_frame.background = prism_frame_buffer.background;
-  prism_frame.size = prism_frame_buffer.size;
-  prism_frame.counts = prism_frame_buffer.counts;
-  prism_frame.flags = prism_frame_buffer.flags;
-  prism_frame.cubemap = prism_frame_buffer.cubemap;
-  prism_frame.anchor = prism_frame_buffer.anchor;
-}
+void prism_copy_frame() { prism_frame = prism_frame_buffer.constants; }
 
 const int PRISM_MISS_ID = -1;
 

@@ -364,36 +364,25 @@ class VulkanBackend : public Backend {
     buffers[gpu::kBindOutput] = &output;
     VkDescriptorBufferInfo infos[gpu::kBindingCount];
     VkWriteDescriptorSet writes[vk::kLayoutBindingCount];
+    uint32_t count = 0;
+    const auto add_write = [&](uint32_t binding, VkDescriptorType type) -> VkWriteDescriptorSet& {
+      VkWriteDescriptorSet& w = writes[count++];
+      w = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+      w.dstSet = kernel.descriptors;
+      w.dstBinding = binding;
+      w.descriptorCount = 1;
+      w.descriptorType = type;
+      return w;
+    };
     for (uint32_t b = 0; b < gpu::kBindingCount; ++b) {
       infos[b] = {buffers[b]->handle(), 0, VK_WHOLE_SIZE};
-      writes[b] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-      writes[b].dstSet = kernel.descriptors;
-      writes[b].dstBinding = b;
-      writes[b].descriptorCount = 1;
-      writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-      writes[b].pBufferInfo = &infos[b];
+      add_write(b, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER).pBufferInfo = &infos[b];
     }
-    uint32_t count = gpu::kBindingCount;
     const VkBufferView texel_view = scene_->texels.handle();
-    if (scene_->texels) {
-      writes[count] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-      writes[count].dstSet = kernel.descriptors;
-      writes[count].dstBinding = vk::kTexelViewBinding;
-      writes[count].descriptorCount = 1;
-      writes[count].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-      writes[count].pTexelBufferView = &texel_view;
-      ++count;
-    }
+    if (scene_->texels) add_write(vk::kTexelViewBinding, VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER).pTexelBufferView = &texel_view;
     const VkDescriptorBufferInfo material_info{scene_->buffers[gpu::kBindMaterials].handle(), 0, scene_->material_block};
-    if (scene_->material_block) {
-      writes[count] = vk::make<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-      writes[count].dstSet = kernel.descriptors;
-      writes[count].dstBinding = vk::kMaterialBlockBinding;
-      writes[count].descriptorCount = 1;
-      writes[count].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-      writes[count].pBufferInfo = &material_info;
-      ++count;
-    }
+    if (scene_->material_block)
+      add_write(vk::kMaterialBlockBinding, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER).pBufferInfo = &material_info;
     api().vkUpdateDescriptorSets(context_->device(), count, writes, 0, nullptr);
   }
 
