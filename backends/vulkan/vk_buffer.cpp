@@ -1,5 +1,6 @@
 #include "vk_buffer.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <utility>
@@ -97,12 +98,13 @@ void Buffer::release() {
   mapped_ = nullptr;
 }
 
-TexelView::TexelView(const Context& context, const Buffer& buffer, const std::string& what) : context_(&context) {
+TexelView::TexelView(const Context& context, const Buffer& buffer, size_t texels, const std::string& what)
+    : context_(&context) {
   auto info = make<VkBufferViewCreateInfo>(VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO);
   info.buffer = buffer.handle();
   info.format = VK_FORMAT_R32G32B32A32_SFLOAT;  // uniform texel buffers of it are mandatory in Vulkan 1.0
   info.offset = 0;
-  info.range = buffer.size() / 16 * 16;
+  info.range = std::max<VkDeviceSize>(texels, 1) * 16;  // a buffer holds at least 16 bytes
   check(context.api().vkCreateBufferView(context.device(), &info, nullptr, &view_), what);
 }
 

@@ -41,12 +41,14 @@ class Buffer {
   void* mapped_ = nullptr;
 };
 
-// A view of a whole buffer as RGBA32F texels, for a uniform texel buffer
-// descriptor (the kernels' samplerBuffer).
+// A view of the first `texels` RGBA32F texels of a buffer (at least one),
+// for a uniform texel buffer descriptor (the kernels' samplerBuffer). Not
+// the whole buffer: one kept from a larger scene may exceed the device's
+// maxTexelBufferElements.
 class TexelView {
  public:
   TexelView() = default;
-  TexelView(const Context& context, const Buffer& buffer, const std::string& what);
+  TexelView(const Context& context, const Buffer& buffer, size_t texels, const std::string& what);
   ~TexelView();
   TexelView(TexelView&& other) noexcept;
   TexelView& operator=(TexelView&& other) noexcept;

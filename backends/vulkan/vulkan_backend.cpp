@@ -274,7 +274,7 @@ class VulkanBackend : public Backend {
   void view_texels(DeviceScene& s) {
     s.texels = vk::TexelView();
     if (gpu::texel_buffer_allowed() && s.packed.texels.size() <= context_->properties().limits.maxTexelBufferElements)
-      s.texels = vk::TexelView(*context_, s.buffers[gpu::kBindTexels], "the texel buffer's view");
+      s.texels = vk::TexelView(*context_, s.buffers[gpu::kBindTexels], s.packed.texels.size(), "the texel buffer's view");
   }
 
   void choose_material_block(DeviceScene& s) {
