@@ -80,8 +80,9 @@ struct GpuState {
     glTextureBuffer(texel_texture, GL_RGBA32F, buffers[gpu::kBindTexels].id());  // the buffer may have been made again
     glBindTextureUnit(0, texel_texture);
   }
-  // Whether the texels fit a buffer texture here; programs built the other way are dropped.
-  void choose_texel_access() {
+  // Whether the texels fit a buffer texture and the materials a uniform block
+  // here; programs built the other way are dropped.
+  void choose_scene_reads() {
     GLint max_texels = 0;
     glGetIntegerv(GL_MAX_TEXTURE_BUFFER_SIZE, &max_texels);
     const bool fits = gpu::texel_buffer_allowed() && max_texels > 0 && packed.texels.size() <= size_t(max_texels);
@@ -166,7 +167,7 @@ class OpenGLBackend : public Backend {
       const gpu::SceneBuffer source = gpu::scene_buffer(p, b);
       state->buffers[b] = gl::Buffer(source.data, source.bytes());
     }
-    state->choose_texel_access();
+    state->choose_scene_reads();
     glFinish();
     check_gl("scene upload");
     stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
@@ -188,7 +189,7 @@ class OpenGLBackend : public Backend {
       check_limits(p, scene.source);
       for (uint32_t b = 0; b < gpu::kSceneBufferCount; ++b) state_->write(b, u.buffers[b]);
       if (u.kernel) state_->drop_programs();
-      state_->choose_texel_access();
+      state_->choose_scene_reads();
       glFinish();
       check_gl("scene update");
       stats_.counters[counter::kSceneBytes] = double(p.buffer_bytes());
