@@ -42,19 +42,60 @@ struct Tile {
   int x0, y0, width, height;
 };
 
-// Tile width and height for an image and spp: multiples of the 8x8 work
-// group, about 0.25 M samples each (a few ms on a GPU, well under a second
-// on a CPU driver, and few enough that 32-bit ray counters cannot overflow).
-std::pair<int, int> tile_size(const ImageSettings& image);
+// How large a tile a device takes. A CPU driver (llvmpipe, lavapipe) gets
+// about 0.25 M samples a tile, well under a second each, so a cancel or a
+// progress report is never far off; a GPU gets up to 2 M (a 1920x1080 frame
+// at 1 spp in one dispatch), since every tile costs a submission, a wait
+// and a copy back. Either is cut further so that the output fits the
+// device's largest storage buffer and 32-bit ray counters cannot overflow
+// (at most `max_depth * max(1, lights)` rays of one kind a sample).
+// PRISM_GPU_TILE_SAMPLES sets the samples a tile (64 .. 2^21), for tests.
+struct TileBudget {
+  long samples = 0;
+  size_t max_output_bytes = 0;
+  int lights = 0;
+};
+TileBudget tile_budget(bool cpu_device, size_t max_storage_bytes, int lights);
+
+// Tile width and height for an image and spp under a budget: multiples of
+// the 8x8 work group.
+std::pair<int, int> tile_size(const ImageSettings& image, const TileBudget& budget);
 // Every tile of the settings' region (or whole image) in row-major order,
 // edge tiles clipped, in image coordinates; InputError for a bad region.
-std::vector<Tile> tiles_of(const RenderSettings& settings);
+std::vector<Tile> tiles_of(const RenderSettings& settings, const TileBudget& budget);
 
+// The output buffer's bytes for a tile of `pixels` with `planes` planes.
+size_t output_bytes(size_t pixels, int planes);
 
 // A black image (ids -1) of the requested size (the region's) and AOVs.
 Image blank_image(const RenderSettings& settings);
-// Copies a tile's pixels (row-major, `tile.width` wide) into the image.
-void store_tile(Image& image, const RenderSettings& settings, const GpuPixel* pixels, const Tile& tile);
+// Copies a tile's pixels (the output's planes after the header, see
+// gpu_layout.hpp) into the image: the planes `output_planes(settings)` says.
+void store_tile(Image& image, const RenderSettings& settings, const float* planes, const Tile& tile);
+// Where a GPU render's time goes, for `prism bench --profile` (stats keys
+// "profile.<phase>"), as laps of the host's clock: set-up and submission (frame constants,
+// buffers), the image's allocation (while the first tile renders), waiting
+// for the device, and storing the tiles in the image. The kernel's own time
+// on the device, from timestamps where the API gives them, is reported
+// beside them as "profile.device: kernel" (inside the waits and the
+// allocation, not a lap of its own). Off, it measures nothing.
+class FrameProfile {
+ public:
+  explicit FrameProfile(bool on);
+  void end_setup();
+  void end_allocation();
+  // After a tile's results are here; `kernel_ms` < 0 when not timed.
+  void end_wait(double kernel_ms);
+  void end_store();
+  void add_to(BackendStats& stats) const;
+
+ private:
+  double lap();
+  bool on_;
+  std::chrono::steady_clock::time_point last_;
+  double setup_ = 0, allocation_ = 0, wait_ = 0, store_ = 0, kernel_ = -1;
+};
+
 // Adds a tile's ray counters (the output buffer's header) to `stats`.
 void add_ray_counters(BackendStats& stats, const uint32_t counters[kRayCounterCount]);
 

@@ -19,7 +19,7 @@ enum Binding : uint32_t {
   kBindLights = 4,     // GpuLight[]
   kBindTexels = 5,     // vec4[]: every texture's texels, one after another
   kBindFrame = 6,      // GpuFrame, then dvec2 sample offsets[]
-  kBindOutput = 7,     // render: ray counters + GpuPixel[]; trace: GpuTraceRay[]
+  kBindOutput = 7,     // render: ray counters + pixel planes; trace: GpuTraceRay[]
   kBindingCount = 8
 };
 
@@ -83,7 +83,7 @@ struct alignas(32) GpuFrame {
   float background[4];
   int32_t size[4];     // width, height, spp, max_depth
   int32_t counts[4];   // objects, bounded objects (the BVH's), lights, nodes
-  int32_t flags[4];    // x: aov path wanted, y: trace ray count, z: depth/normal/albedo AOVs wanted
+  int32_t flags[4];    // x: aov path wanted, y: trace ray count, z: the normal/path and albedo/depth planes wanted
   int32_t cubemap[6][4];  // per face: texel offset, width, height, unused
   float anchor[4];        // what a float world's positions are relative to (xyz; zero in a double world)
   float pad1[4];
@@ -92,20 +92,14 @@ struct alignas(32) GpuFrame {
 static_assert(sizeof(GpuFrame) == 384 && offsetof(GpuFrame, ambient) == 160 && offsetof(GpuFrame, cubemap) == 256 &&
               offsetof(GpuFrame, anchor) == 352);
 
-// The kernel writes normal, depth and albedo only when flags.z asks for them.
-struct alignas(16) GpuPixel {
-  float rgb[3];
-  float id;
-  float normal[3];
-  float path;
-  float albedo[3];
-  float depth;
-};
-static_assert(sizeof(GpuPixel) == 48);
-
-// Render output: the ray counters come first (one per ray kind), then pixels.
+// Render output: the ray counters come first (one per ray kind), then the
+// tile's pixels as planes of float4, each plane as long as the tile: rgb and
+// id; then, only when the frame asks for them (flags.z), normal and path, and
+// albedo and depth. A frame without those AOVs reads back 16 bytes a pixel.
 constexpr size_t kRayCounterCount = 8;
 constexpr size_t kOutputHeaderBytes = 32;
+constexpr size_t kPixelPlaneBytes = 16;
+constexpr int kMaxOutputPlanes = 3;
 
 struct alignas(32) GpuTraceRay {
   double origin_tmin[4];  // in: origin, tmin

@@ -79,24 +79,61 @@ TEST(GpuLimits, EveryBufferOfAPackedSceneIsChecked) {
 }
 
 // Every image size and spp the format allows cuts into tiles whose output
-// buffer fits GL's smallest storage-block limit (2^24 bytes) and whose
-// dispatch stays within 65535 work groups per dimension.
+// buffer fits the device's storage-block limit (GL's smallest, 2^24 bytes,
+// and a GPU's 2 GiB) and whose dispatch stays within 65535 work groups per
+// dimension, for a CPU driver's budget and a GPU's.
 TEST(GpuLimits, TilesFitTheSmallestLimitsOfEveryDevice) {
-  for (int width : {1, 7, 8, 9, 511, 512, 513, 4097, 16384}) {
-    for (int height : {1, 8, 9, 4097, 16384}) {
-      for (int spp : {1, 2, 3, 63, 64, 65, 4095, 4096}) {
-        ImageSettings image;
-        image.width = width;
-        image.height = height;
-        image.spp = spp;
-        const auto [tw, th] = tile_size(image);
-        EXPECT_LE(size_t(tw) * size_t(th), size_t(1) << 18) << width << "x" << height << " spp " << spp;
-        EXPECT_LE(kOutputHeaderBytes + size_t(tw) * size_t(th) * sizeof(GpuPixel), size_t(1) << 24);
-        EXPECT_LE((th + kRenderLocalSize - 1) / kRenderLocalSize, 65535);
-        EXPECT_LE((tw + kRenderLocalSize - 1) / kRenderLocalSize, 65535);
+  for (bool cpu : {true, false}) {
+    for (size_t limit : {size_t(1) << 24, size_t(1) << 31}) {
+      const TileBudget budget = tile_budget(cpu, limit, 1);
+      for (int width : {1, 7, 8, 9, 511, 512, 513, 1920, 4097, 16384}) {
+        for (int height : {1, 8, 9, 1080, 4097, 16384}) {
+          for (int spp : {1, 2, 3, 63, 64, 65, 4095, 4096}) {
+            ImageSettings image;
+            image.width = width;
+            image.height = height;
+            image.spp = spp;
+            const auto [tw, th] = tile_size(image, budget);
+            const size_t pixels = size_t(tw) * size_t(th);
+            EXPECT_LE(pixels, size_t(cpu ? 1 << 18 : 1 << 21)) << width << "x" << height << " spp " << spp;
+            EXPECT_LE(output_bytes(pixels, kMaxOutputPlanes), limit);
+            EXPECT_LE((th + kRenderLocalSize - 1) / kRenderLocalSize, 65535);
+            EXPECT_LE((tw + kRenderLocalSize - 1) / kRenderLocalSize, 65535);
+          }
+        }
       }
     }
   }
+}
+
+// A GPU renders 1920x1080 at 1 spp in one tile; a CPU driver in 512x512-ish
+// tiles of 2^18 samples (512 x 512 = 2^18).
+TEST(GpuLimits, AGpuTakesAFullHdFrameInOneTile) {
+  ImageSettings image;
+  image.width = 1920;
+  image.height = 1080;
+  image.spp = 1;
+  image.max_depth = 5;
+  EXPECT_EQ(tile_size(image, tile_budget(false, size_t(1) << 31, 3)), std::make_pair(1920, 1080));
+  EXPECT_EQ(tile_size(image, tile_budget(true, size_t(1) << 31, 3)), std::make_pair(512, 512));
+  // 2^24 bytes hold (2^24 - 32) / 48 = 349524 pixels of three planes: 1920 x 176.
+  EXPECT_EQ(tile_size(image, tile_budget(false, size_t(1) << 24, 3)), std::make_pair(1920, 176));
+}
+
+// 32-bit ray counters: a tile holds fewer than 2^32 rays of one kind, at most
+// max_depth * lights a sample. Depth 64 and 4096 lights: 2^18 rays a sample,
+// so at most 16383 samples a tile (2^32 / (2^18 + 1) = 16383.9): 512-pixel
+// rows (a CPU-sized tile), 31 of them rounded down to the work group's 8: 24.
+TEST(GpuLimits, TilesAreCutSoThatRayCountersCannotOverflow) {
+  ImageSettings image;
+  image.width = 1024;
+  image.height = 1024;
+  image.spp = 1;
+  image.max_depth = 64;
+  const auto [tw, th] = tile_size(image, tile_budget(false, size_t(1) << 31, 4096));
+  EXPECT_LE(size_t(tw) * size_t(th), size_t(16384));
+  EXPECT_EQ(tw, 512);
+  EXPECT_EQ(th, 24);
 }
 
 }  // namespace

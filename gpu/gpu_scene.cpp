@@ -330,6 +330,11 @@ SceneBuffer scene_buffer(const PackedScene& p, uint32_t binding) {
   }
 }
 
+int output_planes(const RenderSettings& settings) {
+  const bool more = settings.aov_path || settings.aov_normal || settings.aov_albedo || settings.aov_depth;
+  return more ? kMaxOutputPlanes : 1;
+}
+
 GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const RenderSettings& settings) {
   GpuFrame f = packed.frame;
   store4(camera.position, 0.0, f.camera_position);
@@ -344,7 +349,7 @@ GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const Render
   f.size[2] = s.spp;
   f.size[3] = s.max_depth;
   f.flags[0] = settings.aov_path ? 1 : 0;
-  f.flags[2] = settings.aov_depth || settings.aov_normal || settings.aov_albedo ? 1 : 0;
+  f.flags[2] = output_planes(settings) > 1 ? 1 : 0;
   return f;
 }
 

@@ -113,6 +113,10 @@ struct SceneBuffer {
 };
 SceneBuffer scene_buffer(const PackedScene& packed, uint32_t binding);
 
+// How many planes of the render output a frame fills: 1 (rgb and id), or
+// all 3 when it asks for the path, normal, albedo or depth AOV.
+int output_planes(const RenderSettings& settings);
+
 // The per-render part of the frame: camera, image size, samples, flags.
 GpuFrame frame_for(const PackedScene& packed, const Camera& camera, const RenderSettings& settings);
 std::vector<glm::dvec2> sample_offsets(int spp);

@@ -37,14 +37,13 @@ void main() {
 
 #else
 
-struct PrismPixel {
-  vec4 rgb_id;
-  vec4 normal_path;
-  vec4 albedo_depth;  // with normal: written only when prism_frame.flags.z asks for them
-};
+// The tile's pixels as planes of vec4, each as long as the tile: rgb and id
+// first; then, only when prism_frame.flags.z asks for them, normal and path,
+// and albedo and depth. A frame without those AOVs reads back 16 bytes a
+// pixel.
 layout(std430, binding = PRISM_BINDING_OUTPUT) buffer PrismOutputBuffer {
   uint prism_counters[8];
-  PrismPixel prism_pixels[];
+  vec4 prism_pixels[];
 };
 
 // The format's camera ray through pixel (i, j) at sample offset `offset`.
@@ -98,12 +97,11 @@ void main() {
     st = prism_start_path(prism_camera_ray(pixel.x, pixel.y, prism_frame_buffer.sample_offsets[k]));
   }
   uint index = uint(local.y * PRISM_TILE_ORIGIN.z + local.x);
-  prism_pixels[index].rgb_id = vec4(sum / float(prism_frame.size.z), float(first.first_id));
+  uint plane = uint(PRISM_TILE_ORIGIN.z * PRISM_TILE_ORIGIN.w);
+  prism_pixels[index] = vec4(sum / float(prism_frame.size.z), float(first.first_id));
   if (prism_frame.flags.z != 0) {
-    prism_pixels[index].normal_path = vec4(vec3(first.first_normal), float(first.path_hash));
-    prism_pixels[index].albedo_depth = vec4(first.first_albedo, float(first.first_t));
-  } else {
-    prism_pixels[index].normal_path.w = float(first.path_hash);
+    prism_pixels[plane + index] = vec4(vec3(first.first_normal), float(first.path_hash));
+    prism_pixels[2u * plane + index] = vec4(first.first_albedo, float(first.first_t));
   }
   for (int k = 0; k < PRISM_RAY_KINDS; ++k)
     if (prism_ray_counts[k] != 0u) atomicAdd(prism_counters[k], prism_ray_counts[k]);

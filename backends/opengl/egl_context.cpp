@@ -34,9 +34,15 @@ const char* gl_string(GLenum name) {
   return s ? s : "?";
 }
 
+struct Candidate {
+  EGLDisplay display;
+  std::string platform;
+  bool software;  // the EGL device says it is a software renderer (EGL_MESA_device_software)
+};
+
 // EGL displays to try, each with the platform's name, in order of preference.
-std::vector<std::pair<EGLDisplay, std::string>> candidate_displays(std::string& why) {
-  std::vector<std::pair<EGLDisplay, std::string>> displays;
+std::vector<Candidate> candidate_displays(std::string& why) {
+  std::vector<Candidate> displays;
   const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
   const char* forced = std::getenv("PRISM_EGL_PLATFORM");  // "device" or "surfaceless"
   auto wanted = [&](const char* name) { return !forced || std::strcmp(forced, name) == 0; };
@@ -47,19 +53,23 @@ std::vector<std::pair<EGLDisplay, std::string>> candidate_displays(std::string& 
   }
   if (wanted("device") && has_extension(client, "EGL_EXT_platform_device")) {
     auto query = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+    auto device_string =
+        reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
     EGLDeviceEXT devices[16];
     EGLint count = 0;
     if (query && query(16, devices, &count)) {
       for (EGLint i = 0; i < count; ++i) {
         EGLDisplay d = get_display(EGL_PLATFORM_DEVICE_EXT, devices[i], nullptr);
-        if (d != EGL_NO_DISPLAY) displays.emplace_back(d, "EGL device " + std::to_string(i));
+        const char* extensions = device_string ? device_string(devices[i], EGL_EXTENSIONS) : nullptr;
+        if (d != EGL_NO_DISPLAY)
+          displays.push_back({d, "EGL device " + std::to_string(i), has_extension(extensions, "EGL_MESA_device_software")});
       }
     }
     if (count == 0) why += "EGL device platform: no devices; ";
   }
   if (wanted("surfaceless") && has_extension(client, "EGL_MESA_platform_surfaceless")) {
     EGLDisplay d = get_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (d != EGL_NO_DISPLAY) displays.emplace_back(d, "EGL surfaceless");
+    if (d != EGL_NO_DISPLAY) displays.push_back({d, "EGL surfaceless", false});
   } else if (wanted("surfaceless")) {
     why += "no EGL_MESA_platform_surfaceless; ";
   }
@@ -70,8 +80,12 @@ std::vector<std::pair<EGLDisplay, std::string>> candidate_displays(std::string& 
 
 EglContext::EglContext() {
   std::string why;
-  for (auto& [display, platform] : candidate_displays(why)) {
-    if (try_display(display, platform, why)) return;
+  for (const Candidate& c : candidate_displays(why)) {
+    if (!try_display(c.display, c.platform, why)) continue;
+    // Mesa's software rasterisers, also where the platform does not say so (surfaceless).
+    const std::string renderer = driver_identity_.substr(driver_identity_.find('|') + 1);
+    software_ = c.software || renderer.starts_with("llvmpipe") || renderer.starts_with("softpipe");
+    return;
   }
   if (why.empty()) why = "no EGL platform offered a display";
   throw RuntimeError("no OpenGL 4.5 core context via EGL: " + why.substr(0, why.find_last_not_of("; ") + 1));

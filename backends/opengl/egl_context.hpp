@@ -22,6 +22,8 @@ class EglContext {
   const std::string& description() const { return description_; }
   // Vendor, renderer and version strings: what a cached program binary depends on.
   const std::string& driver_identity() const { return driver_identity_; }
+  // A CPU renderer (llvmpipe), not a GPU: it takes smaller tiles.
+  bool software() const { return software_; }
 
   // Makes this context current for the guard's lifetime and restores the
   // caller's EGL context afterwards (prism view keeps its own window context).
@@ -44,6 +46,7 @@ class EglContext {
   EGLContext context_ = EGL_NO_CONTEXT;
   std::string description_;
   std::string driver_identity_;
+  bool software_ = false;
 };
 
 }  // namespace prism::gl

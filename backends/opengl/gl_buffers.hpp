@@ -38,4 +38,50 @@ class Buffer {
   size_t bytes_ = 0;
 };
 
+// A buffer the host reads results from: persistently mapped, filled by
+// copies from a storage buffer (glCopyNamedBufferSubData), read once a
+// fence after the copies has signalled. On a GPU this reads from host
+// memory; glGetNamedBufferSubData would stall in the driver's own copy.
+class ReadbackBuffer {
+ public:
+  ReadbackBuffer() = default;
+  explicit ReadbackBuffer(size_t bytes);
+  ~ReadbackBuffer();
+  ReadbackBuffer(ReadbackBuffer&& other) noexcept;
+  ReadbackBuffer& operator=(ReadbackBuffer&& other) noexcept;
+  ReadbackBuffer(const ReadbackBuffer&) = delete;
+  ReadbackBuffer& operator=(const ReadbackBuffer&) = delete;
+
+  // Copies `bytes` from the start of `from`; wait() returns once they are
+  // here (the host may work in between).
+  void start_copy(const Buffer& from, size_t bytes);
+  void wait();
+  const void* data() const { return mapped_; }
+  size_t bytes() const { return bytes_; }
+
+ private:
+  void release();
+  GLuint id_ = 0;
+  size_t bytes_ = 0;
+  void* mapped_ = nullptr;
+  GLsync fence_ = nullptr;
+};
+
+// Two GL timestamps around a dispatch (glQueryCounter), for `bench
+// --profile`; off, it makes no queries and ms() is -1.
+class TimerPair {
+ public:
+  explicit TimerPair(bool on);
+  ~TimerPair();
+  TimerPair(const TimerPair&) = delete;
+  TimerPair& operator=(const TimerPair&) = delete;
+  void start() const;
+  void stop() const;
+  // The time between them on the device, once the commands have finished.
+  double ms() const;
+
+ private:
+  GLuint queries_[2] = {0, 0};
+};
+
 }  // namespace prism::gl

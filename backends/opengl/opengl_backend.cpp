@@ -29,7 +29,6 @@ namespace prism {
 namespace {
 
 using gpu::GpuFrame;
-using gpu::GpuPixel;
 using gpu::GpuTraceRay;
 
 using gpu::kTraceLocalSize;
@@ -112,6 +111,22 @@ gl::Buffer buffer_of(const std::vector<T>& v) {
   return gl::Buffer(v.data(), v.size() * sizeof(T));
 }
 
+// A render's buffers, kept from one render to the next and grown when a
+// frame needs more: the frame's constants, the tile output and the host's
+// readback copy of it.
+struct FrameBuffers {
+  gl::Buffer frame, output;
+  gl::ReadbackBuffer readback;
+
+  void reserve(size_t frame_bytes, size_t output_bytes) {
+    if (frame.bytes() < frame_bytes) frame = gl::Buffer(nullptr, frame_bytes);
+    if (output.bytes() < output_bytes) {
+      output = gl::Buffer(nullptr, output_bytes);
+      readback = gl::ReadbackBuffer(output_bytes);
+    }
+  }
+};
+
 class OpenGLBackend : public Backend {
  public:
   OpenGLBackend() : context_(std::make_unique<gl::EglContext>()) {
@@ -147,6 +162,7 @@ class OpenGLBackend : public Backend {
   ~OpenGLBackend() override {
     gl::EglContext::Current current(*context_);
     state_.reset();
+    frame_buffers_ = {};
   }
 
   void prepare(const Scene& scene) override {
@@ -208,35 +224,50 @@ class OpenGLBackend : public Backend {
     auto start = std::chrono::steady_clock::now();
     const ImageSettings& s = settings.image;
     GpuFrame frame = gpu::frame_for(state_->packed, settings.camera.value_or(scene_->camera), settings);
-    gl::Buffer frame_buffer = frame_buffer_for(frame, gpu::sample_offsets(s.spp));
-    auto [tw, th] = gpu::tile_size(s);
-    gl::Buffer output(nullptr, gpu::kOutputHeaderBytes + size_t(tw) * th * sizeof(GpuPixel));
+    gpu::FrameProfile profile(settings.profile);
+    const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(state_->packed, frame, gpu::sample_offsets(s.spp));
+    const gpu::TileBudget budget = tile_budget();
+    auto [tw, th] = gpu::tile_size(s, budget);
+    const int planes = gpu::output_planes(settings);
+    frame_buffers_.reserve(frame_bytes.size(), gpu::output_bytes(size_t(tw) * th, planes));
+    frame_buffers_.frame.write(0, frame_bytes.size(), frame_bytes.data());
     state_->bind_scene();
-    frame_buffer.bind(gpu::kBindFrame);
-    output.bind(gpu::kBindOutput);
+    frame_buffers_.frame.bind(gpu::kBindFrame);
+    frame_buffers_.output.bind(gpu::kBindOutput);
     glUseProgram(program);
 
-    Image image = gpu::blank_image(settings);
-    std::vector<GpuPixel> pixels(size_t(tw) * th);
-    uint32_t counters[gpu::kRayCounterCount];
-    const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings);
+    Image image;  // made while the first tile renders
+    const auto* readback = static_cast<const char*>(frame_buffers_.readback.data());
+    const auto* counters = reinterpret_cast<const uint32_t*>(readback);
+    const auto* pixels = reinterpret_cast<const float*>(readback + gpu::kOutputHeaderBytes);
+    const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings, budget);
     const uint64_t rays_before = stats_.rays;  // the counters add up over calls; the progress is this call's
+    gl::TimerPair timer(settings.profile);
     for (size_t t = 0; t < tiles.size(); ++t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
       const uint32_t zero[gpu::kRayCounterCount] = {};
-      output.write(0, sizeof zero, zero);
+      frame_buffers_.output.write(0, sizeof zero, zero);
       glUniform4i(0, tile.x0, tile.y0, tile.width, tile.height);
+      timer.start();
       glDispatchCompute(GLuint((tile.width + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize),
                         GLuint((tile.height + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize), 1);
-      glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-      output.read(0, sizeof counters, counters);
-      output.read(gpu::kOutputHeaderBytes, size_t(tile.width) * tile.height * sizeof(GpuPixel), pixels.data());
+      timer.stop();
+      frame_buffers_.readback.start_copy(frame_buffers_.output, gpu::output_bytes(size_t(tile.width) * tile.height, planes));
+      if (t == 0) {
+        profile.end_setup();
+        image = gpu::blank_image(settings);
+        profile.end_allocation();
+      }
+      frame_buffers_.readback.wait();
       check_gl("rendering");
-      gpu::store_tile(image, settings, pixels.data(), tile);
+      profile.end_wait(timer.ms());
+      gpu::store_tile(image, settings, pixels, tile);
       gpu::add_ray_counters(stats_, counters);
+      profile.end_store();
       report_progress(settings, double(t + 1) / double(tiles.size()), stats_.rays - rays_before);
     }
+    profile.add_to(stats_);
     stats_.ms[ms_key::kRender] += ms_since(start);
     return image;
   }
@@ -331,8 +362,17 @@ class OpenGLBackend : public Backend {
     return gl::Buffer(bytes.data(), bytes.size());
   }
 
+  // This device's tile budget: a CPU renderer's small tiles or a GPU's large ones.
+  gpu::TileBudget tile_budget() const {
+    GLint64 max_block = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
+    const size_t lights = std::max(state_->packed.lights.size(), state_->packed.lights_f.size());
+    return gpu::tile_budget(context_->software(), size_t(max_block), int(lights));
+  }
+
   std::unique_ptr<gl::EglContext> context_;
   std::unique_ptr<GpuState> state_;
+  FrameBuffers frame_buffers_;
   Precision precision_ = Precision::automatic;
   bool tracing_ = false;  // the prepared world is for `trace`
   std::optional<glm::dvec3> trace_anchor_;  // a float world's anchor for `trace`: its rays' origins

@@ -72,6 +72,11 @@ namespace prism::vk {
   X(vkCmdDispatch)                    \
   X(vkCmdCopyBuffer)                  \
   X(vkCmdFillBuffer)                  \
+  X(vkCreateQueryPool)                \
+  X(vkDestroyQueryPool)               \
+  X(vkCmdResetQueryPool)              \
+  X(vkCmdWriteTimestamp)              \
+  X(vkGetQueryPoolResults)            \
   X(vkCmdPipelineBarrier)             \
   X(vkQueueSubmit)                    \
   X(vkCreateFence)                    \

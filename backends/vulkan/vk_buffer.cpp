@@ -150,12 +150,19 @@ Commands::Commands(const Context& context) : context_(context) {
 Commands::~Commands() {
   if (context_.abandoned()) return;
   const Api& api = context_.api();
+  if (pending_) api.vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
   if (fence_) api.vkDestroyFence(context_.device(), fence_, nullptr);
   api.vkDestroyCommandPool(context_.device(), pool_, nullptr);  // frees the command buffer
 }
 
 void Commands::run(const std::string& what, const std::function<void(VkCommandBuffer)>& record) {
-  const double seconds = timeout_seconds();  // a bad value is refused before anything is submitted
+  submit(what, record);
+  wait(what);
+}
+
+void Commands::submit(const std::string& what, const std::function<void(VkCommandBuffer)>& record) {
+  timeout_seconds();  // a bad value is refused before anything is submitted
+  if (pending_) wait(what);
   const Api& api = context_.api();
   auto begin = make<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
   begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -169,6 +176,14 @@ void Commands::run(const std::string& what, const std::function<void(VkCommandBu
   const VkResult submitted = api.vkQueueSubmit(context_.queue(), 1, &submit, fence_);
   if (submitted == VK_ERROR_DEVICE_LOST) context_.abandon();
   check(submitted, what);
+  pending_ = true;
+}
+
+void Commands::wait(const std::string& what) {
+  if (!pending_) return;
+  pending_ = false;
+  const double seconds = timeout_seconds();
+  const Api& api = context_.api();
   const VkResult waited = api.vkWaitForFences(context_.device(), 1, &fence_, VK_TRUE, uint64_t(seconds * 1e9));
   if (waited != VK_SUCCESS) context_.abandon();
   if (waited == VK_TIMEOUT)

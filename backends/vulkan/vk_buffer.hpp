@@ -75,8 +75,13 @@ class Commands {
   // not finished after $PRISM_VULKAN_TIMEOUT seconds (default 300): a hung
   // device ends the run with a message instead of hanging it.
   void run(const std::string& what, const std::function<void(VkCommandBuffer)>& record);
+  // The two halves of run(), so that the host can work while the device
+  // does: submit() first waits for anything still pending.
+  void submit(const std::string& what, const std::function<void(VkCommandBuffer)>& record);
+  void wait(const std::string& what);
 
  private:
+  bool pending_ = false;
   const Context& context_;
   VkCommandPool pool_ = VK_NULL_HANDLE;
   VkCommandBuffer commands_ = VK_NULL_HANDLE;

@@ -64,6 +64,7 @@ struct Candidate {
   VkPhysicalDeviceProperties properties;
   uint32_t index;
   uint32_t queue_family;
+  uint32_t timestamp_bits;  // the queue's timestampValidBits (0: no timestamps)
   bool float64;         // shaderFloat64, unless hidden_float64()
   std::string problem;  // empty when suitable
 };
@@ -73,7 +74,7 @@ struct Candidate {
 bool hidden_float64() { return env_number("PRISM_VULKAN_HIDE_FLOAT64", 0.0, 0.0, 1.0) == 1.0; }
 
 Candidate examine(const Api& api, VkPhysicalDevice device, uint32_t index) {
-  Candidate c{device, {}, index, 0, false, {}};
+  Candidate c{device, {}, index, 0, 0, false, {}};
   api.vkGetPhysicalDeviceProperties(device, &c.properties);
   VkPhysicalDeviceFeatures features{};
   api.vkGetPhysicalDeviceFeatures(device, &features);
@@ -87,8 +88,10 @@ Candidate examine(const Api& api, VkPhysicalDevice device, uint32_t index) {
     c.problem = "supports Vulkan " + version_text(c.properties.apiVersion) + ", Prism needs 1.2";
   else if (compute == families.end())
     c.problem = "has no compute queue";
-  else
+  else {
     c.queue_family = uint32_t(compute - families.begin());
+    c.timestamp_bits = compute->timestampValidBits;
+  }
   c.float64 = features.shaderFloat64 && !hidden_float64();
   return c;
 }
@@ -210,6 +213,7 @@ void Context::choose_device() {
   physical_ = chosen->handle;
   properties_ = chosen->properties;
   queue_family_ = chosen->queue_family;
+  timestamp_bits_ = chosen->timestamp_bits;
   float64_ = chosen->float64;
   api_.vkGetPhysicalDeviceMemoryProperties(physical_, &memory_);
 }

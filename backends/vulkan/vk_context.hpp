@@ -37,6 +37,8 @@ class Context {
   VkDevice device() const { return device_; }
   VkQueue queue() const { return queue_; }
   uint32_t queue_family() const { return queue_family_; }
+  // The queue's timestamp bits (0: it cannot time its commands).
+  uint32_t timestamp_bits() const { return timestamp_bits_; }
   const VkPhysicalDeviceProperties& properties() const { return properties_; }
   const VkPhysicalDeviceMemoryProperties& memory() const { return memory_; }
   bool validation() const { return messenger_ != VK_NULL_HANDLE; }
@@ -75,6 +77,7 @@ class Context {
   VkPhysicalDeviceProperties properties_{};
   VkPhysicalDeviceMemoryProperties memory_{};
   uint32_t queue_family_ = 0;
+  uint32_t timestamp_bits_ = 0;
   bool float64_ = false;
   VkDevice device_ = VK_NULL_HANDLE;
   VkQueue queue_ = VK_NULL_HANDLE;

@@ -30,7 +30,6 @@ namespace prism {
 namespace {
 
 using gpu::GpuFrame;
-using gpu::GpuPixel;
 using gpu::GpuTraceRay;
 using gpu::ms_since;
 
@@ -46,6 +45,29 @@ constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 
 // A kernel's pipeline (null until built) and the descriptor set that binds
 // the buffers to it (kept when an update drops the pipeline).
+// A render's buffers, kept from one render to the next (allocating them is
+// a good part of a frame on a GPU) and grown when a frame needs more: the
+// frame's constants and their staging copy, the tile output and its
+// host-visible readback copy.
+struct FrameBuffers {
+  vk::Buffer frame, frame_staging, output, readback;
+
+  void reserve(const vk::Context& context, size_t frame_bytes, size_t output_bytes) {
+    if (frame.size() < frame_bytes) {
+      frame = vk::Buffer(context, frame_bytes, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::Memory::Device,
+                         "allocation of the frame constants");
+      frame_staging = vk::Buffer(context, frame_bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, vk::Memory::Staging,
+                                 "allocation of the frame constants");
+    }
+    if (output.size() < output_bytes) {
+      output = vk::Buffer(context, output_bytes, kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                          vk::Memory::Device, "allocation of the tile output");
+      readback = vk::Buffer(context, output_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::Memory::Staging,
+                            "allocation of the readback buffer");
+    }
+  }
+};
+
 struct Kernel {
   VkPipeline pipeline = VK_NULL_HANDLE;
   VkDescriptorSet descriptors = VK_NULL_HANDLE;
@@ -109,6 +131,7 @@ class VulkanBackend : public Backend {
 
   ~VulkanBackend() override {
     release_scene();
+    if (timestamps_ && !context_->abandoned()) context_->api().vkDestroyQueryPool(context_->device(), timestamps_, nullptr);
     if (!context_->abandoned()) context_->api().vkDestroyDescriptorPool(context_->device(), pool_, nullptr);
   }
 
@@ -182,35 +205,44 @@ class VulkanBackend : public Backend {
     use_world_for(false);
     const Kernel& kernel = kernel_for(false);
     auto start = std::chrono::steady_clock::now();
+    gpu::FrameProfile profile(settings.profile);
     const ImageSettings& s = settings.image;
     const GpuFrame frame = gpu::frame_for(scene_->packed, settings.camera.value_or(scene_model_->camera), settings);
     const std::vector<unsigned char> frame_bytes = gpu::frame_bytes(scene_->packed, frame, gpu::sample_offsets(s.spp));
-    vk::Buffer frame_buffer = vk::upload_storage(*context_, *commands_, frame_bytes.data(), frame_bytes.size(),
-                                                 "upload of the frame constants");
-    auto [tw, th] = gpu::tile_size(s);
-    const VkDeviceSize output_size = gpu::kOutputHeaderBytes + VkDeviceSize(tw) * th * sizeof(GpuPixel);
-    vk::Buffer output(*context_, output_size, kStorage | VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                      vk::Memory::Device, "allocation of the tile output");
-    vk::Buffer readback(*context_, output_size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, vk::Memory::Staging,
-                        "allocation of the readback buffer");
-    bind(kernel, frame_buffer, output);
+    const gpu::TileBudget budget = tile_budget();
+    auto [tw, th] = gpu::tile_size(s, budget);
+    const int planes = gpu::output_planes(settings);
+    frame_buffers_.reserve(*context_, frame_bytes.size(), gpu::output_bytes(size_t(tw) * th, planes));
+    std::memcpy(frame_buffers_.frame_staging.mapped(), frame_bytes.data(), frame_bytes.size());
+    bind(kernel, frame_buffers_.frame, frame_buffers_.output);
 
-    Image image = gpu::blank_image(settings);
-    const auto* header = static_cast<const uint32_t*>(readback.mapped());
-    const auto* pixels = reinterpret_cast<const GpuPixel*>(static_cast<const char*>(readback.mapped()) + gpu::kOutputHeaderBytes);
-    const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings);
+    Image image;  // made while the first tile renders
+    const char* readback = static_cast<const char*>(frame_buffers_.readback.mapped());
+    const auto* header = reinterpret_cast<const uint32_t*>(readback);
+    const auto* pixels = reinterpret_cast<const float*>(readback + gpu::kOutputHeaderBytes);
+    const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings, budget);
     const uint64_t rays_before = stats_.rays;  // the counters add up over calls; the progress is this call's
+    const bool timed = settings.profile && timestamps();
     for (size_t t = 0; t < tiles.size(); ++t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
-      const VkDeviceSize used = gpu::kOutputHeaderBytes + VkDeviceSize(tile.width) * tile.height * sizeof(GpuPixel);
-      commands_->run("rendering", [&](VkCommandBuffer cb) {
-        record_tile(cb, kernel, output, readback, tile, used);
+      commands_->submit("rendering", [&](VkCommandBuffer cb) {
+        if (t == 0) record_frame_upload(cb, frame_bytes.size());
+        record_tile(cb, kernel, tile, gpu::output_bytes(size_t(tile.width) * tile.height, planes), timed);
       });
+      if (t == 0) {
+        profile.end_setup();
+        image = gpu::blank_image(settings);
+        profile.end_allocation();
+      }
+      commands_->wait("rendering");
+      profile.end_wait(timed ? kernel_ms() : -1.0);
       gpu::store_tile(image, settings, pixels, tile);
       gpu::add_ray_counters(stats_, header);
+      profile.end_store();
       report_progress(settings, double(t + 1) / double(tiles.size()), stats_.rays - rays_before);
     }
+    profile.add_to(stats_);
     stats_.ms[ms_key::kRender] += ms_since(start);
     check_validation("rendering");
     return image;
@@ -394,17 +426,62 @@ class VulkanBackend : public Backend {
     api().vkCmdDispatch(cb, groups_x, groups_y, 1);
   }
 
-  // Clear the counters, render the tile, copy what it wrote to the readback buffer.
-  void record_tile(VkCommandBuffer cb, const Kernel& kernel, const vk::Buffer& output, const vk::Buffer& readback,
-                   const gpu::Tile& tile, VkDeviceSize used) {
+  // The frame's constants from their staging buffer, before the first tile reads them.
+  void record_frame_upload(VkCommandBuffer cb, size_t bytes) {
     const vk::Api& vk = api();
+    const VkBufferCopy region{0, 0, bytes};
+    vk.vkCmdCopyBuffer(cb, frame_buffers_.frame_staging.handle(), frame_buffers_.frame.handle(), 1, &region);
+    vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_SHADER_READ_BIT);
+  }
+
+  // Clear the counters, render the tile, copy what it wrote (`used` bytes) to the readback buffer.
+  void record_tile(VkCommandBuffer cb, const Kernel& kernel, const gpu::Tile& tile, VkDeviceSize used, bool timed) {
+    const vk::Api& vk = api();
+    const vk::Buffer& output = frame_buffers_.output;
+    // The previous tile's copy back reads the output: the clear waits for it.
+    vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_ACCESS_TRANSFER_WRITE_BIT);
     vk.vkCmdFillBuffer(cb, output.handle(), 0, gpu::kOutputHeaderBytes, 0);
     vk::barrier(vk, cb, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     const int32_t origin[4] = {tile.x0, tile.y0, tile.width, tile.height};
+    if (timed) {
+      vk.vkCmdResetQueryPool(cb, timestamps_, 0, 2);
+      vk.vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps_, 0);
+    }
     dispatch(cb, kernel, origin, uint32_t(tile.width + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize,
              uint32_t(tile.height + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize);
-    copy_back(cb, output, readback, used);
+    if (timed) vk.vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, timestamps_, 1);
+    copy_back(cb, output, frame_buffers_.readback, used);
+  }
+
+  // A pool of two timestamps around a tile's dispatch, made on first use
+  // (`bench --profile`): false where the queue does not count time.
+  bool timestamps() {
+    if (timestamps_) return true;
+    if (context_->timestamp_bits() == 0) return false;
+    auto info = vk::make<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+    info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    info.queryCount = 2;
+    return api().vkCreateQueryPool(context_->device(), &info, nullptr, &timestamps_) == VK_SUCCESS;
+  }
+
+  // The last tile's dispatch on the device, from its two timestamps.
+  double kernel_ms() const {
+    uint64_t ticks[2] = {};
+    api().vkGetQueryPoolResults(context_->device(), timestamps_, 0, 2, sizeof ticks, ticks, sizeof(uint64_t),
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT);
+    const uint32_t bits = context_->timestamp_bits();
+    const uint64_t mask = bits >= 64 ? ~uint64_t(0) : (uint64_t(1) << bits) - 1;
+    return double((ticks[1] - ticks[0]) & mask) * double(context_->properties().limits.timestampPeriod) * 1e-6;
+  }
+
+  // This device's tile budget: a CPU device's small tiles or a GPU's large ones.
+  gpu::TileBudget tile_budget() const {
+    const VkPhysicalDeviceProperties& p = context_->properties();
+    const size_t lights = std::max(scene_->packed.lights.size(), scene_->packed.lights_f.size());
+    return gpu::tile_budget(p.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU, p.limits.maxStorageBufferRange, int(lights));
   }
 
   void record_trace(VkCommandBuffer cb, const Kernel& kernel, const vk::Buffer& staging, const vk::Buffer& records,
@@ -462,6 +539,8 @@ class VulkanBackend : public Backend {
   std::unique_ptr<vk::PipelineLayout> layout_;
   VkDescriptorPool pool_ = VK_NULL_HANDLE;
   std::unique_ptr<DeviceScene> scene_;
+  FrameBuffers frame_buffers_;
+  VkQueryPool timestamps_ = VK_NULL_HANDLE;
   const Scene* scene_model_ = nullptr;
   mutable size_t reported_ = 0;
   BackendStats stats_;

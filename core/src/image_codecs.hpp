@@ -2,8 +2,7 @@
 // OpenEXR: the formats `prism render` writes and scenes use as textures.
 // They start in a millisecond where OpenImageIO's ~250 libraries take half a
 // second, so OpenImageIO (libprism_oiio.so) is only loaded for other formats,
-// for variants these readers leave to it (CMYK JPEG, deep EXR) and for
-// compare_image_files. Their results equal OpenImageIO's for the same file:
+// and for variants these readers leave to it (CMYK JPEG, deep EXR). Their results equal OpenImageIO's for the same file:
 // the same channel order, the same float values, unassociated alpha.
 #pragma once
 

@@ -1,6 +1,9 @@
 #include "prism/image_file.hpp"
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
+#include <limits>
 #include <cstring>
 #include <fstream>
 
@@ -161,12 +164,61 @@ bool openimageio_loaded() {
   return false;
 }
 
+namespace {
+
+// One channel's values in both images, folded into the running comparison.
+// A non-finite value matches only the same non-finite value (NaN with NaN,
+// +inf with +inf); any other pair with one fails its pixel, and its error is
+// infinite.
+// The difference is a float subtraction and the PSNR's peak is the largest
+// magnitude in either image (at least 1), as OpenImageIO's.
+struct ComparisonSums {
+  double error = 0, squared_error = 0;
+  float peak = 1;
+};
+
+double channel_error(float a, float b, ComparisonSums& sums) {
+  if (std::isfinite(a) && std::isfinite(b)) {
+    const double error = std::abs(a - b);
+    sums.error += error;
+    sums.squared_error += error * error;
+    sums.peak = std::max({sums.peak, std::abs(a), std::abs(b)});
+    return error;
+  }
+  const bool same = (std::isnan(a) && std::isnan(b)) || a == b;
+  return same ? 0 : std::numeric_limits<double>::infinity();
+}
+
+}  // namespace
+
 ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, float threshold) {
   if (a.width != b.width || a.height != b.height || a.channels != b.channels)
     throw InputError("cannot compare a " + std::to_string(a.width) + "x" + std::to_string(a.height) + "x" +
                      std::to_string(a.channels) + " image with a " + std::to_string(b.width) + "x" +
                      std::to_string(b.height) + "x" + std::to_string(b.channels) + " one");
-  return image_module().compare(a, b, threshold);
+  ImageComparison c;
+  ComparisonSums sums;
+  const size_t pixels = size_t(a.width) * size_t(a.height);
+  for (size_t p = 0; p < pixels; ++p) {
+    bool over = false;
+    for (int channel = 0; channel < a.channels; ++channel) {
+      const size_t i = p * size_t(a.channels) + size_t(channel);
+      const double error = channel_error(a.pixels[i], b.pixels[i], sums);
+      if (error > c.max_error) {  // the first of equal largest errors
+        c.max_error = error;
+        c.max_x = int(p % size_t(a.width));
+        c.max_y = int(p / size_t(a.width));
+        c.max_channel = channel;
+      }
+      over = over || error > double(threshold);
+    }
+    c.pixels_over += over;
+  }
+  const double values = double(pixels) * a.channels;
+  c.mean_error = sums.error / values;
+  c.rms_error = std::sqrt(sums.squared_error / values);
+  c.psnr = 20.0 * std::log10(sums.peak / c.rms_error);  // infinite for equal images
+  return c;
 }
 
 }  // namespace prism

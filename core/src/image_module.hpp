@@ -15,8 +15,6 @@ struct ImageModule {
   // The size, channels and format from the file's header; no pixels.
   std::string (*read_header)(const std::filesystem::path& file, ImageFile& out);
   std::string (*write)(const std::filesystem::path& file, const ImageFile& image, PixelFormat storage);
-  // ImageBufAlgo::compare of two images of the same size and channel count.
-  ImageComparison (*compare)(const ImageFile& a, const ImageFile& b, float threshold);
 };
 
 // Writes `image` to `file` (by name; the extension picks the format) with

@@ -1,6 +1,4 @@
 // libprism_oiio.so: the only code that includes OpenImageIO.
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -99,28 +97,7 @@ std::string write(const std::filesystem::path& file, const ImageFile& image, Pix
   return "";
 }
 
-OIIO::ImageBuf buffer_of(const ImageFile& image) {
-  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
-  // Wraps the caller's pixels: nothing is copied, and the buffer never writes.
-  return OIIO::ImageBuf(spec, const_cast<float*>(image.pixels.data()));
-}
-
-ImageComparison compare(const ImageFile& a, const ImageFile& b, float threshold) {
-  const OIIO::ImageBufAlgo::CompareResults r =
-      OIIO::ImageBufAlgo::compare(buffer_of(a), buffer_of(b), threshold, threshold);
-  ImageComparison c;
-  c.mean_error = r.meanerror;
-  c.rms_error = r.rms_error;
-  c.psnr = r.PSNR;
-  c.max_error = r.maxerror;
-  c.max_x = r.maxx;
-  c.max_y = r.maxy;
-  c.max_channel = r.maxc;
-  c.pixels_over = long(r.nfail);
-  return c;
-}
-
-const ImageModule module = {read, read_header, write, compare};
+const ImageModule module = {read, read_header, write};
 
 }  // namespace
 }  // namespace prism

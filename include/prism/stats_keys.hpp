@@ -22,6 +22,9 @@ inline constexpr const char* kCompile = "compile";  // GPU kernels generated, bu
 inline constexpr const char* kRender = "render";    // render() and trace()
 // RenderSettings::profile: "profile.<phase>", summed over threads.
 inline constexpr const char* kProfilePrefix = "profile.";
+// A profile phase timed on a GPU ("profile.device: kernel"): it overlaps the
+// host's phases, so it is not part of their sum.
+inline constexpr const char* kDevicePhasePrefix = "device: ";
 }  // namespace ms_key
 
 // BackendStats::counters.

@@ -71,15 +71,18 @@ bool box_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(Pris
 
 void box_surface(PrismRecord rec, PrismRay ray, PrismHit hit, OUT(PrismSurface) s) {
   real3 h = prism_record3(rec, BOX_HALF);
-  real3 p = hit.data;
-  for (int i = 0; i < 3; ++i)
-    p[i] = uint(i) == hit.part ? prism_copysign(h[i], p[i]) : clamp(p[i], -h[i], h[i]);
+  // Components are written by name, never at a computed index: NVIDIA's
+  // OpenGL compiler cannot link a dynamically indexed write into a dvec3.
+  real3 q = hit.data;
+  real3 p = real3(hit.part == 0u ? prism_copysign(h.x, q.x) : clamp(q.x, -h.x, h.x),
+                  hit.part == 1u ? prism_copysign(h.y, q.y) : clamp(q.y, -h.y, h.y),
+                  hit.part == 2u ? prism_copysign(h.z, q.z) : clamp(q.z, -h.z, h.z));
   // The spec's face: argmax |p_i| / h_i, ties going to the lower axis.
   int a = 0;
   for (int i = 1; i < 3; ++i)
     if (abs(p[i]) / h[i] > abs(p[a]) / h[a]) a = i;
-  real3 n = real3(R(0.0));
-  n[a] = prism_copysign(R(1.0), p[a]);
+  real sign = prism_copysign(R(1.0), p[a]);
+  real3 n = real3(a == 0 ? sign : R(0.0), a == 1 ? sign : R(0.0), a == 2 ? sign : R(0.0));
   // Spec uv: +-x (z, -y), +-y (x, z), +-z (x, -y), each mapped to [0, 1].
   real from_x = (p.x + h.x) / (R(2.0) * h.x);
   real from_z = (p.z + h.z) / (R(2.0) * h.z);

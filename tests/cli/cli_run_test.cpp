@@ -643,6 +643,28 @@ TEST_P(GpuSceneReads, UniformPathsAndStorageBuffersRenderTheSameImage) {
   EXPECT_EQ(kernels.size(), 3u);
 }
 
+// A CPU driver renders in tiles of about 2^18 samples, a GPU in one of up
+// to 2^21 (gpu::tile_budget); PRISM_GPU_TILE_SAMPLES forces either size
+// here, and a tile of 64 samples cuts the image into many. Each pixel's
+// work is the same whatever the tile, so the image and every AOV plane
+// (rgb and id, normal and path, albedo and depth) come back byte for byte.
+TEST_P(GpuSceneReads, EveryTileSizeRendersTheSameImageAndAovs) {
+  if (!prism::test::require_backend_or_skip(GetParam())) return;
+  const std::string scene = (prism::test::source_dir() / "scenes/showcase.json").string();
+  const auto render = [&](const std::string& out, const char* tile_samples) {
+    ::setenv("PRISM_GPU_TILE_SAMPLES", tile_samples, 1);
+    RunResult r = run({"render", scene, "-b", GetParam(), "--width", "160", "--height", "90", "--spp", "2", "--aov",
+                       "id,path,depth,normal,albedo", "-o", path(out).string()});
+    ::unsetenv("PRISM_GPU_TILE_SAMPLES");
+    EXPECT_TRUE(ExitedWith(r, 0));
+    return read_file(path(out));
+  };
+  const std::string one_tile = render("one_tile.exr", "2097152");
+  const std::string many_tiles = render("many_tiles.exr", "64");
+  EXPECT_FALSE(one_tile.empty());
+  EXPECT_TRUE(one_tile == many_tiles) << "one tile and many tiles rendered different images";
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, GpuSceneReads, testing::ValuesIn(prism::test::gpu_backend_names()),
                          prism::test::backend_param_name);
 
