@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <regex>
+#include <set>
+#include <sstream>
 
 #include "kernel_source.hpp"
 #include "prism/errors.hpp"
@@ -204,6 +206,53 @@ TEST(KernelSource, CompileErrorsAreBlamedOnThePluginTheyAreIn) {
   EXPECT_EQ(blame_compile_error(text, "ERROR: kernel:" + line + ": 'x' : syntax error"), blame);  // glslang
   EXPECT_EQ(blame_compile_error(text, "0:3(1): error: in the header"), "");
   EXPECT_EQ(blame_compile_error(text, "error without a line"), "");
+}
+
+// Writes of a vector component at a computed index (`v[i] = ...` with v a
+// vector): NVIDIA's OpenGL compiler cannot link them in a double kernel
+// (C9999 __setVectorIndex). Reads are fine. Returns each offending line.
+std::vector<std::string> vector_writes_at_computed_index(const std::string& text) {
+  std::set<std::string> vectors;
+  // Vectors, not arrays of them (`vec4 pixels[]`).
+  const std::regex declaration(R"(\b(?:w?real[234]|[dbiu]?vec[234]|wvec[234])\s+(\w+)\b(?!\s*\[))");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), declaration); it != std::sregex_iterator(); ++it)
+    vectors.insert((*it)[1]);
+  std::vector<std::string> found;
+  // A variable, not a struct's member (`q.c[i]`, an array).
+  const std::regex write(R"((?:^|[^.\w])(\w+)\s*\[([^\]]+)\]\s*[-+*/]?=[^=])");
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);) {
+    std::smatch m;
+    for (std::string rest = line; std::regex_search(rest, m, write); rest = m.suffix().str()) {
+      const bool literal_index = std::regex_match(m[2].str(), std::regex(R"(\s*\d+u?\s*)"));
+      if (vectors.count(m[1]) && !literal_index) found.push_back(line);
+    }
+  }
+  return found;
+}
+
+TEST(KernelPortability, TheCheckFindsAVectorWriteAtAComputedIndex) {
+  const std::string text = "real3 p = q;\nfor (int i = 0; i < 3; ++i) p[i] = 0.0;\nreal3 n; n[2] = 1.0;\nreal c[10];\n"
+                           "c[i] = 1.0;\nreal x = p[i];\nn[a] += 2.0;\n";
+  const std::vector<std::string> found = vector_writes_at_computed_index(text);
+  ASSERT_EQ(found.size(), 2u);
+  EXPECT_NE(found[0].find("p[i] = 0.0"), std::string::npos);
+  EXPECT_NE(found[1].find("n[a] += 2.0"), std::string::npos);
+}
+
+// Every built-in primitive's GLSL, the modules and the kernel, in both worlds.
+TEST(KernelPortability, NoKernelWritesAVectorComponentAtAComputedIndex) {
+  Registry registry;
+  for (const char* file : {"scenes/showcase.json", "scenes/conformance/quadric.json", "scenes/conformance/far_camera.json"}) {
+    Scene scene = load_scene(std::string(PRISM_SOURCE_DIR) + "/" + file, registry);
+    KernelOptions options;
+    options.all_features = true;
+    for (bool trace : {false, true}) {
+      options.trace = trace;
+      const std::vector<std::string> found = vector_writes_at_computed_index(generate_kernel(pack_scene(scene), options).text);
+      EXPECT_TRUE(found.empty()) << file << ": " << (found.empty() ? "" : found[0]);
+    }
+  }
 }
 
 }  // namespace
