@@ -38,8 +38,9 @@ static_assert(kMaxGroupsPerTile * kGroupScramblePrime < (uint64_t(1) << 32) && k
 int round_up8(long n) { return int((n + 7) / 8 * 8); }
 }  // namespace
 
-TileBudget tile_budget(bool cpu_device, size_t max_storage_bytes, int lights) {
+TileBudget tile_budget(bool cpu_device, size_t max_storage_bytes, int lights, int min_tiles) {
   TileBudget budget;
+  budget.min_tiles = std::max(1, min_tiles);
   const double fallback = double(cpu_device ? kCpuSamplesPerTile : kGpuSamplesPerTile);
   budget.samples = long(env_number("PRISM_GPU_TILE_SAMPLES", fallback, 64, double(kGpuSamplesPerTile)));
   budget.max_output_bytes = max_storage_bytes;
@@ -62,7 +63,8 @@ std::pair<int, int> tile_size(const ImageSettings& image, const TileBudget& budg
   const int max_width = pixels <= kCpuSamplesPerTile ? 512 : round_up8(pixels / 8);
   const int w = round_up8(std::min(image.width, max_width));
   const int h = std::max(8, int(pixels / w) / 8 * 8);
-  return {w, std::min(h, round_up8(image.height))};
+  const int band = round_up8((long(image.height) + budget.min_tiles - 1) / budget.min_tiles);
+  return {w, std::min({h, band, round_up8(image.height)})};
 }
 
 std::vector<Tile> tiles_of(const RenderSettings& settings, const TileBudget& budget) {

@@ -50,12 +50,16 @@ struct Tile {
 // device's largest storage buffer and 32-bit ray counters cannot overflow
 // (at most `max_depth * max(1, lights)` rays of one kind a sample).
 // PRISM_GPU_TILE_SAMPLES sets the samples a tile (64 .. 2^21), for tests.
+// `min_tiles` cuts a frame into at least that many bands of rows: a backend
+// that keeps two tiles in flight (OpenGL) stores one while the device
+// renders the next.
 struct TileBudget {
   long samples = 0;
   size_t max_output_bytes = 0;
   int lights = 0;
+  int min_tiles = 1;
 };
-TileBudget tile_budget(bool cpu_device, size_t max_storage_bytes, int lights);
+TileBudget tile_budget(bool cpu_device, size_t max_storage_bytes, int lights, int min_tiles = 1);
 
 // Tile width and height for an image and spp under a budget: multiples of
 // the 8x8 work group.

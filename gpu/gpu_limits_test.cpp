@@ -120,6 +120,23 @@ TEST(GpuLimits, AGpuTakesAFullHdFrameInOneTile) {
   EXPECT_EQ(tile_size(image, tile_budget(false, size_t(1) << 24, 3)), std::make_pair(1920, 176));
 }
 
+// A backend with two tiles in flight (OpenGL on a GPU) asks for at least two
+// bands: 1080 rows in bands of ceil(1080 / 2) = 540 rounded up to the work
+// group's 8, 544 (so two tiles, not three); a frame of 9 rows in bands of 8.
+TEST(GpuLimits, TwoTilesInFlightCutAFrameIntoTwoBands) {
+  ImageSettings image;
+  image.width = 1920;
+  image.height = 1080;
+  image.spp = 1;
+  image.max_depth = 5;
+  EXPECT_EQ(tile_size(image, tile_budget(false, size_t(1) << 31, 3, 2)), std::make_pair(1920, 544));
+  image.height = 9;
+  EXPECT_EQ(tile_size(image, tile_budget(false, size_t(1) << 31, 3, 2)), std::make_pair(1920, 8));
+  // A CPU driver's tiles are small already: two bands change nothing there.
+  image.height = 1080;
+  EXPECT_EQ(tile_size(image, tile_budget(true, size_t(1) << 31, 3, 2)), std::make_pair(512, 512));
+}
+
 // 32-bit ray counters: a tile holds fewer than 2^32 rays of one kind, at most
 // max_depth * lights a sample. Depth 64 and 4096 lights: 2^18 rays a sample,
 // so at most 16383 samples a tile (2^32 / (2^18 + 1) = 16383.9): 512-pixel

@@ -112,17 +112,23 @@ gl::Buffer buffer_of(const std::vector<T>& v) {
 }
 
 // A render's buffers, kept from one render to the next and grown when a
-// frame needs more: the frame's constants, the tile output and the host's
-// readback copy of it.
+// frame needs more: the frame's constants, and two tile slots (an output and
+// the host's readback copy of it), so that one tile renders while the host
+// stores the other.
 struct FrameBuffers {
-  gl::Buffer frame, output;
-  gl::ReadbackBuffer readback;
+  struct Slot {
+    gl::Buffer output;
+    gl::ReadbackBuffer readback;
+  };
+  gl::Buffer frame;
+  Slot slots[2];
 
   void reserve(size_t frame_bytes, size_t output_bytes) {
     if (frame.bytes() < frame_bytes) frame = gl::Buffer(nullptr, frame_bytes);
-    if (output.bytes() < output_bytes) {
-      output = gl::Buffer(nullptr, output_bytes);
-      readback = gl::ReadbackBuffer(output_bytes);
+    for (Slot& slot : slots) {
+      if (slot.output.bytes() >= output_bytes) continue;
+      slot.output = gl::Buffer(nullptr, output_bytes);
+      slot.readback = gl::ReadbackBuffer(output_bytes);
     }
   }
 };
@@ -233,39 +239,42 @@ class OpenGLBackend : public Backend {
     frame_buffers_.frame.write(0, frame_bytes.size(), frame_bytes.data());
     state_->bind_scene();
     frame_buffers_.frame.bind(gpu::kBindFrame);
-    frame_buffers_.output.bind(gpu::kBindOutput);
     glUseProgram(program);
 
-    Image image;  // made while the first tile renders
-    const auto* readback = static_cast<const char*>(frame_buffers_.readback.data());
-    const auto* counters = reinterpret_cast<const uint32_t*>(readback);
-    const auto* pixels = reinterpret_cast<const float*>(readback + gpu::kOutputHeaderBytes);
     const std::vector<gpu::Tile> tiles = gpu::tiles_of(settings, budget);
-    const uint64_t rays_before = stats_.rays;  // the counters add up over calls; the progress is this call's
-    gl::TimerPair timer(settings.profile);
-    for (size_t t = 0; t < tiles.size(); ++t) {
+    gl::TimerPair timers[2] = {gl::TimerPair(settings.profile), gl::TimerPair(settings.profile)};
+    // Tile t renders in slot t % 2 and is copied to its readback buffer;
+    // the next tile is already under way while the host stores this one.
+    const auto issue = [&](size_t t) {
       throw_if_cancelled();  // between dispatches: a request stops the run within one tile
       const gpu::Tile& tile = tiles[t];
+      FrameBuffers::Slot& slot = frame_buffers_.slots[t % 2];
       const uint32_t zero[gpu::kRayCounterCount] = {};
-      frame_buffers_.output.write(0, sizeof zero, zero);
+      slot.output.write(0, sizeof zero, zero);
+      slot.output.bind(gpu::kBindOutput);
       glUniform4i(0, tile.x0, tile.y0, tile.width, tile.height);
-      timer.start();
+      timers[t % 2].start();
       glDispatchCompute(GLuint((tile.width + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize),
                         GLuint((tile.height + gpu::kRenderLocalSize - 1) / gpu::kRenderLocalSize), 1);
-      timer.stop();
-      frame_buffers_.readback.start_copy(frame_buffers_.output, gpu::output_bytes(size_t(tile.width) * tile.height, planes));
-      if (t == 0) {
-        profile.end_setup();
-        image = gpu::blank_image(settings);
-        profile.end_allocation();
-      }
-      frame_buffers_.readback.wait();
+      timers[t % 2].stop();
+      slot.readback.start_copy(slot.output, gpu::output_bytes(size_t(tile.width) * tile.height, planes));
+    };
+    for (size_t t = 0; t < std::min<size_t>(2, tiles.size()); ++t) issue(t);
+    profile.end_setup();
+    Image image = gpu::blank_image(settings);  // while the first tiles render
+    profile.end_allocation();
+    const uint64_t rays_before = stats_.rays;  // the counters add up over calls; the progress is this call's
+    for (size_t t = 0; t < tiles.size(); ++t) {
+      FrameBuffers::Slot& slot = frame_buffers_.slots[t % 2];
+      slot.readback.wait();
       check_gl("rendering");
-      profile.end_wait(timer.ms());
-      gpu::store_tile(image, settings, pixels, tile);
-      gpu::add_ray_counters(stats_, counters);
+      profile.end_wait(timers[t % 2].ms());
+      const auto* readback = static_cast<const char*>(slot.readback.data());
+      gpu::store_tile(image, settings, reinterpret_cast<const float*>(readback + gpu::kOutputHeaderBytes), tiles[t]);
+      gpu::add_ray_counters(stats_, reinterpret_cast<const uint32_t*>(readback));
       profile.end_store();
       report_progress(settings, double(t + 1) / double(tiles.size()), stats_.rays - rays_before);
+      if (t + 2 < tiles.size()) issue(t + 2);
     }
     profile.add_to(stats_);
     stats_.ms[ms_key::kRender] += ms_since(start);
@@ -367,7 +376,9 @@ class OpenGLBackend : public Backend {
     GLint64 max_block = 0;
     glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block);
     const size_t lights = std::max(state_->packed.lights.size(), state_->packed.lights_f.size());
-    return gpu::tile_budget(context_->software(), size_t(max_block), int(lights));
+    // Two tiles in flight on a GPU (a frame is at least two bands); a CPU
+    // renderer runs a dispatch at once, so it gains nothing from more tiles.
+    return gpu::tile_budget(context_->software(), size_t(max_block), int(lights), context_->software() ? 1 : 2);
   }
 
   std::unique_ptr<gl::EglContext> context_;
