@@ -16,6 +16,7 @@
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
+#include "embree_box_filter.hpp"
 #include "embree_device.hpp"
 #include "embree_view_buffers.hpp"
 #include "prism/cpu_render.hpp"
@@ -76,6 +77,8 @@ class EmbreeQuery final : public ObjectQuery {
   size_t bvh_object_count() const { return bvh_ids_.size(); }
   size_t brute_force_count() const { return brute_ids_.size(); }
   size_t geometry_count() const { return main_.ids.empty() ? 0 : 1; }
+  // Whether rays are tested against the boxes of few objects instead of Embree's BVH.
+  bool filters() const { return filter_.has_value(); }
 
   struct SceneDeleter {
     void operator()(RTCScene scene) const { rtcReleaseScene(scene); }
@@ -106,6 +109,11 @@ class EmbreeQuery final : public ObjectQuery {
   // Whether the double arithmetic that moves the origin to world t = shift
   // stays far inside the padding (else the ray takes the brute-force path).
   bool shift_is_exact_enough(const Ray& ray, double shift) const;
+  // The queries through filter_ ("Few objects" in embree_query.cpp), or
+  // nothing for a ray the filter cannot take.
+  bool filter_takes(const Ray& ray, glm::dvec3& inv) const;
+  Hit closest_filtered(const Ray& ray, double tmin, const glm::dvec3& inv) const;
+  int32_t occluder_filtered(const Ray& ray, double tmax, const glm::dvec3& inv) const;
 
   // The layers an update adds (embree_update.hpp).
   struct Moved {
@@ -147,6 +155,7 @@ class EmbreeQuery final : public ObjectQuery {
   double built_area_ = 0;           // Σ half_area(box when built), BVH objects
   double now_area_ = 0;             // Σ half_area(box now), BVH objects
   double moved_area_ = 0;           // Σ half_area(box now), moved objects
+  std::optional<BoxFilter> filter_;  // few BVH objects: their padded boxes
   Group main_;
   ScenePtr main_scene_;
   std::unique_ptr<Moved> moved_;

@@ -92,6 +92,7 @@ UpdateResult EmbreeQuery::update(std::span<const uint32_t> changed, bool may_lay
   main_.objects = moved_->group.objects = objects.data();
   for (int32_t id : moving) {
     boxes_[id] = objects[id].world_bounds;
+    if (filter_) filter_->set_box(id, boxes_[id]);
     frame_.objects = box_union(frame_.objects, boxes_[id]);
     if (moved_ids_[id] != 0) continue;
     moved_ids_[id] = 1;

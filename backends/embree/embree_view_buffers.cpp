@@ -49,7 +49,7 @@ constexpr double kCosineMargin = 1e-12;
 constexpr double kPointBudget = 2e5;
 constexpr double kGridBudget = 2e5;
 
-double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double max_abs(const glm::dvec3& v) { return std::max(std::max(std::abs(v.x), std::abs(v.y)), std::abs(v.z)); }
 
 double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
   return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
@@ -170,13 +170,20 @@ PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> sp
 }
 
 size_t PointBuffer::cell_of(const glm::dvec3& dir) const {
+  // face_frame's axes by name (glm's operator[] is a switch, and this runs
+  // for every buffered ray): the major axis, then u = the next one, v = the one after.
   const double ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
-  const int axis = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
-  const int face = 2 * axis + (dir[axis] < 0 ? 1 : 0);
-  const FaceFrame f = face_frame(face);
-  const double major = std::abs(dir[axis]);
+  int face;
+  double major, u, v;
+  if (ax >= ay && ax >= az) {
+    face = dir.x < 0 ? 1 : 0, major = ax, u = dir.y, v = dir.z;
+  } else if (ay >= az) {
+    face = dir.y < 0 ? 3 : 2, major = ay, u = dir.z, v = dir.x;
+  } else {
+    face = dir.z < 0 ? 5 : 4, major = az, u = dir.x, v = dir.y;
+  }
   auto index = [&](double c) { return std::clamp(int((c / major + 1) * 0.5 * resolution_), 0, resolution_ - 1); };
-  return size_t((face * resolution_ + index(dir[f.v_axis])) * resolution_ + index(dir[f.u_axis]));
+  return size_t((face * resolution_ + index(v)) * resolution_ + index(u));
 }
 
 ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double extent) : dir_(dir) {

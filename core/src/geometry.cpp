@@ -17,7 +17,7 @@ namespace {
 
 glm::dvec3 load(const double v[3]) { return {v[0], v[1], v[2]}; }
 
-double max_abs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double max_abs(const glm::dvec3& v) { return std::max(std::max(std::abs(v.x), std::abs(v.y)), std::abs(v.z)); }
 
 // The local ray again in long double, from the rotation before rounding and
 // with the direction normalised in long double (as the exact answer has it).
@@ -149,11 +149,18 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
   return out;
 }
 
-Hit intersect_light_spheres(const Scene& scene, const Ray& ray, double tmin, double tmax) {
+std::vector<uint32_t> lights_with_spheres(const Scene& scene) {
+  std::vector<uint32_t> lights;
+  for (size_t k = 0; k < scene.lights.size(); ++k)
+    if (scene.lights[k].visible_sphere()) lights.push_back(uint32_t(k));
+  return lights;
+}
+
+Hit intersect_light_spheres(const Scene& scene, std::span<const uint32_t> lights, const Ray& ray, double tmin,
+                            double tmax) {
   Hit best;
-  for (size_t k = 0; k < scene.lights.size(); ++k) {
+  for (const uint32_t k : lights) {
     const Light& light = scene.lights[k];
-    if (!light.visible_sphere()) continue;
     double t;
     if (sdk::intersect_sphere(ray.origin - light.position, ray.dir, light.radius, tmin, tmax, t) && t < best.t) {
       best.t = t;

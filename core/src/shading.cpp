@@ -17,7 +17,7 @@ glm::dvec3 reflect_dir(const glm::dvec3& d, const glm::dvec3& n) { return glm::n
 
 // The format's secondary-ray offset for a hit at P.
 double offset_epsilon(const glm::dvec3& p) {
-  return 1e-4 * (1.0 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+  return 1e-4 * (1.0 + std::max(std::max(std::abs(p.x), std::abs(p.y)), std::abs(p.z)));
 }
 
 using Clock = std::chrono::steady_clock;
@@ -62,7 +62,8 @@ struct Shader::Surface {
 };
 
 Hit Shader::with_light_spheres(const Hit& hit, const Ray& ray, double tmin) const {
-  Hit light = intersect_light_spheres(scene_, ray, tmin, hit.t);
+  if (sphere_lights_.empty()) return hit;
+  Hit light = intersect_light_spheres(scene_, sphere_lights_, ray, tmin, hit.t);
   return light.t < hit.t ? light : hit;  // equal t: the object wins
 }
 

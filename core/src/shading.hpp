@@ -53,6 +53,7 @@ class Shader {
         query_(query),
         counts_(counts),
         profile_(profile),
+        sphere_lights_(lights_with_spheres(scene)),
         last_blocker_(scene.lights.size(), kMissId) {}
   SampleResult trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
   // Closest hit with t > tmin over objects and visible light spheres (objects win ties).
@@ -76,6 +77,7 @@ class Shader {
   PhaseProfile* profile_;
   bool hashing_ = false;
   uint32_t hash_ = 0;
+  std::vector<uint32_t> sphere_lights_;  // the lights whose sphere rays can meet
   std::vector<int32_t> last_blocker_;  // per light: the object that blocked its last shadow ray
 };
 

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -130,8 +132,12 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
 // normal `s`, is that ill-conditioned (exposed for tests).
 bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s);
 
-// Closest light sphere with tmin < t <= tmax (ties: lower light index).
-Hit intersect_light_spheres(const Scene& scene, const Ray& ray, double tmin, double tmax);
+// The lights of `scene` whose sphere is visible, ascending.
+std::vector<uint32_t> lights_with_spheres(const Scene& scene);
+// Closest sphere of `lights` (from lights_with_spheres) with tmin < t <= tmax
+// (ties: lower light index).
+Hit intersect_light_spheres(const Scene& scene, std::span<const uint32_t> lights, const Ray& ray, double tmin,
+                            double tmax);
 
 // The outward unit normal of the light sphere that `hit` (found by
 // intersect_light_spheres for `ray`) lies on.
