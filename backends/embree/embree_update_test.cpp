@@ -136,6 +136,22 @@ TEST(EmbreeUpdate, AfterAFrameOfFewRaysPerObjectMovesAreLayered) {
   expect_fresh_image(*backend, field.edited, "embree");
 }
 
+// Few objects: the queries test the box filter's boxes, not Embree's
+// layers (embree_box_filter.hpp), and a layered move must reach them too.
+TEST(EmbreeUpdate, LayeredMovesInASmallSceneReachTheBoxFilter) {
+  REQUIRE_PRIMITIVE("sphere");
+  REQUIRE_PRIMITIVE("plane");
+  LiveField field({2, 2, 3});  // 12 spheres and the floor
+  const auto backend = create_backend("embree");
+  backend->prepare(field.scene);
+  const glm::dvec3 c = field.scene.objects[5].center;
+  backend->update(field.scene, field.move(5, c + glm::dvec3(0.3, -0.2, 0.2), 0.6));
+  const Counts counts = Counts::of(*backend);
+  EXPECT_EQ(counts.refits, 1.0);  // layered (a second move of this size would pass kMaxLayeredCost in so small a scene)
+  EXPECT_EQ(counts.builds, 1.0);
+  expect_fresh_image(*backend, field.edited, "embree");
+}
+
 // The frame's box B has room around the objects (a quarter of the field's
 // width, ~12): moving into it layers; moving out of it builds again, around
 // a B with room again.
