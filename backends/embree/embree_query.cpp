@@ -346,12 +346,9 @@ bool EmbreeQuery::shift_is_exact_enough(const Ray& ray, double shift) const {
 }
 
 bool EmbreeQuery::filter_takes(const Ray& ray, glm::dvec3& inv) const {
-  if (!filter_) return false;
+  // A NaN or infinite origin makes the sum so (max_abs may drop a NaN).
   const glm::dvec3& o = ray.origin;
-  // shift_is_exact_enough(ray, 0) with max_abs(o) bounded from above; false
-  // for a NaN or infinite origin too.
-  const double reach = std::abs(o.x) + std::abs(o.y) + std::abs(o.z) + max_abs(frame_.center);
-  if (!(reach * 0x1p-44 <= frame_.pad)) return false;
+  if (!filter_ || !std::isfinite(o.x + o.y + o.z) || !shift_is_exact_enough(ray, 0.0)) return false;
   inv = 1.0 / ray.dir;
   return std::isfinite(inv.x) && std::isfinite(inv.y) && std::isfinite(inv.z);  // and dir is not NaN
 }
