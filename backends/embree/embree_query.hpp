@@ -46,7 +46,8 @@ class EmbreeQuery final : public ObjectQuery {
   EmbreeQuery(const Scene& scene, Device& device);
   ~EmbreeQuery() override;
 
-  Hit closest(const Ray& ray, double tmin) const override;
+  Hit closest(const Ray& ray, double tmin) const override { return closest_skipping(ray, tmin, kMissId); }
+  Hit closest_leaving(const Ray& ray, int32_t self) const override { return closest_skipping(ray, 0.0, self); }
   int32_t occluder(const Ray& ray, double tmax) const override;
 
   // Builds the light buffers of a frame seen from `eye` (embree_view_buffers.hpp)
@@ -56,7 +57,7 @@ class EmbreeQuery final : public ObjectQuery {
   // Answered from those buffers where they apply, else by closest() and
   // occluder(); the answers are the same either way.
   Hit camera_closest(const Ray& ray) const override;
-  int32_t light_occluder(size_t light, const Ray& ray, double tmax) const override;
+  int32_t light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear = {}) const override;
   // Whether light buffers are in use (for tests and --stats).
   bool has_views() const { return views_.has_value(); }
 
@@ -112,7 +113,9 @@ class EmbreeQuery final : public ObjectQuery {
   // The queries through filter_ ("Few objects" in embree_query.cpp), or
   // nothing for a ray the filter cannot take.
   bool filter_takes(const Ray& ray, glm::dvec3& inv) const;
-  Hit closest_filtered(const Ray& ray, double tmin, const glm::dvec3& inv) const;
+  // closest() that leaves object `skip` out (kMissId: none).
+  Hit closest_skipping(const Ray& ray, double tmin, int32_t skip) const;
+  Hit closest_filtered(const Ray& ray, double tmin, int32_t skip, const glm::dvec3& inv) const;
   int32_t occluder_filtered(const Ray& ray, double tmax, const glm::dvec3& inv) const;
 
   // The layers an update adds (embree_update.hpp).
@@ -128,6 +131,7 @@ class EmbreeQuery final : public ObjectQuery {
   struct Views {
     std::vector<BoundSphere> spheres;  // every bounded object
     std::vector<int32_t> unbounded;    // tested for every ray
+    std::vector<glm::dvec4> bound_of;  // by object id: its sphere grown for misses_bound (bounded ones)
     double light_reach = 0;            // how far a shadow ray may end from its point light
     double extent = 0;                 // the largest |coordinate| of the objects and lights
     glm::dvec3 eye{0};

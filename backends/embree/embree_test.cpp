@@ -2,6 +2,7 @@
 // choose candidates, never change an answer (same id, same t).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -79,6 +80,44 @@ TEST(EmbreeQuery, RandomScenesHoldEveryAvailableType) {
   std::set<std::string> drawn;
   for (const Object& object : scene.objects) drawn.insert(object.desc->type_name);
   EXPECT_EQ(std::vector<std::string>(drawn.begin(), drawn.end()), types);
+}
+
+// PRISM_PRIMITIVE_CONVEX is a promise the shading path relies on (it skips
+// the object in shadow and reflected rays from its own front-facing hits):
+// for every plugin that makes it, rays leaving a front-facing hit from the
+// format's offset origin, in any direction on the outward side down to
+// grazing ones, must find no hit on that object.
+TEST(EmbreeQuery, ConvexPluginsAreNotMetAgainByRaysLeavingTheirFront) {
+  REQUIRE_PRIMITIVE("sphere");
+  int claimed = 0, checked = 0;
+  for (const std::string& type : available_types()) {
+    Rng rng(23);
+    const Scene scene = load(random_objects_json(rng, {type}, 12));
+    if (!(scene.objects[0].desc->flags & PRISM_PRIMITIVE_CONVEX)) continue;
+    ++claimed;
+    for (int i = 0; i < 4000; ++i) {
+      const Ray ray = random_ray(rng, scene, 3.0);
+      const Hit hit = brute_closest(scene, ray, 0.0);
+      if (hit.id < 0) continue;
+      const Object& object = scene.objects[size_t(hit.id)];
+      const SurfacePoint sp = surface_of(object, ray, hit.prim);
+      if (!(glm::dot(ray.dir, sp.normal) < 0)) continue;  // back-facing: no promise
+      const glm::dvec3 p = sp.position;
+      const double epsilon = 1e-4 * (1 + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+      // Toward the outward side; every fourth ray within 1e-6 of grazing.
+      glm::dvec3 dir = random_unit(rng);
+      if (glm::dot(dir, sp.normal) < 0) dir = -dir;
+      if (i % 4 == 0) dir = glm::normalize(dir - glm::dot(dir, sp.normal) * sp.normal + 1e-6 * sp.normal);
+      if (!(glm::dot(dir, sp.normal) > 0)) continue;
+      PrismHit again;
+      ASSERT_FALSE(intersect_object(object, Ray{p + epsilon * sp.normal, dir}, 0.0, kInfinity, again))
+          << type << " object " << hit.id << " met again at t = " << again.t;
+      ++checked;
+    }
+  }
+  std::printf("[   info   ] %d convex types, %d rays leaving a front face\n", claimed, checked);
+  EXPECT_GE(claimed, 2);
+  EXPECT_GT(checked, 1000 * claimed);
 }
 
 TEST(EmbreeQuery, MatchesBruteForceForRaysFromFarAway) {

@@ -57,6 +57,7 @@ struct Shader::Surface {
   glm::dvec3 color;  // c: material colour times texture
   double alpha;      // a
   const Material* material;
+  int32_t id;  // the object hit
   double epsilon;
   Ray spawn(const glm::dvec3& dir, double side) const { return {position + side * epsilon * n, dir}; }
 };
@@ -69,9 +70,17 @@ Hit Shader::with_light_spheres(const Hit& hit, const Ray& ray, double tmin) cons
 
 Hit Shader::closest(const Ray& ray, double tmin) const { return with_light_spheres(query_.closest(ray, tmin), ray, tmin); }
 
-Hit Shader::closest_in_phase(const Ray& ray, Phase phase) const {
+Hit Shader::closest_in_phase(const Ray& ray, Phase phase, int32_t leaving) const {
   PhaseScope scope(profile_, phase);
-  return with_light_spheres(phase == kPhaseCameraRays ? query_.camera_closest(ray) : query_.closest(ray, 0.0), ray, 0.0);
+  const Hit hit = phase == kPhaseCameraRays ? query_.camera_closest(ray) : query_.closest_leaving(ray, leaving);
+  return with_light_spheres(hit, ray, 0.0);
+}
+
+// The object a ray spawned on the side s.n faces cannot meet again, or
+// kMissId: a front-facing hit on a convex object (PRISM_PRIMITIVE_CONVEX).
+int32_t Shader::left_behind(const Surface& s) const {
+  const bool convex = (scene_.objects[size_t(s.id)].desc->flags & PRISM_PRIMITIVE_CONVEX) != 0;
+  return s.front && convex ? s.id : kMissId;
 }
 
 Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
@@ -85,6 +94,7 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   s.cosi = std::clamp(-glm::dot(ray.dir, s.n), 0.0, 1.0);
   s.t = sp.t;
   s.material = &scene_.materials[size_t(object.material)];
+  s.id = hit.id;
   s.color = s.material->color;
   s.alpha = 1.0;
   if (s.material->texture >= 0) {
@@ -112,15 +122,20 @@ void Shader::note(uint32_t value) {
   }
 }
 
-bool Shader::shadowed(size_t light, const Ray& ray, double distance) {
+bool Shader::shadowed(size_t light, const Ray& ray, double distance, int32_t self) {
   ++counts_.n[kShadowRay];
   PhaseScope scope(profile_, kPhaseShadowRays);
   // Neighbouring shadow rays toward one light are mostly blocked by the same
   // object: trying it first skips the whole query for them. The answer is
-  // the same either way (any blocking object will do).
+  // the same either way (any blocking object will do), and the query need
+  // not test that object again.
+  KnownClear clear{self, kMissId};
   int32_t& last = last_blocker_[light];
-  if (last != kMissId && blocks(scene_.objects[size_t(last)], ray, distance, query_.entry())) return true;
-  const int32_t blocker = query_.light_occluder(light, ray, distance);
+  if (last != kMissId && last != self) {
+    if (blocks(scene_.objects[size_t(last)], ray, distance, query_.entry())) return true;
+    clear.tested = last;
+  }
+  const int32_t blocker = query_.light_occluder(light, ray, distance, clear);
   if (blocker != kMissId) last = blocker;
   return blocker != kMissId;
 }
@@ -129,6 +144,9 @@ glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
   const Material& m = *s.material;
   glm::dvec3 sum = scene_.ambient * s.color;
   const glm::dvec3 origin = s.position + s.epsilon * s.n;
+  // Every shadow ray below leaves the surface on the side s.n faces (ndl >
+  // 0, origin offset along s.n).
+  const int32_t self = left_behind(s);
   for (size_t k = 0; k < scene_.lights.size(); ++k) {
     const Light& light = scene_.lights[k];
     glm::dvec3 l, energy = light.color * light.intensity;
@@ -144,7 +162,7 @@ glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
     }
     double ndl = glm::dot(s.n, l);
     if (!(ndl > 0)) continue;  // a light behind the surface adds nothing and needs no shadow ray
-    bool blocked = shadowed(k, {origin, l}, distance);
+    bool blocked = shadowed(k, {origin, l}, distance, self);
     note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
     glm::dvec3 visibility = blocked ? scene_.shadow_ambient : glm::dvec3(1.0);
     double phong = 0.0;
@@ -159,9 +177,9 @@ glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
   return sum;
 }
 
-glm::dvec3 Shader::shade1(const Ray& ray) {
+glm::dvec3 Shader::shade1(const Ray& ray, int32_t leaving) {
   ++counts_.n[kShade1Ray];
-  Hit hit = closest_in_phase(ray, kPhaseSecondaryRays);
+  Hit hit = closest_in_phase(ray, kPhaseSecondaryRays, leaving);
   note(uint32_t(hit.id));
   if (!hit.found()) return background_radiance(scene_, ray.dir);
   if (hit.id < 0) return scene_.lights[size_t(-2 - hit.id)].color;
@@ -181,9 +199,11 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
   glm::dvec3 w(1.0), radiance(0.0);
   Ray ray = camera_ray;
   int kind = kCameraRay;
+  int32_t leaving = kMissId;  // an object the ray cannot meet (left_behind)
   for (int depth = 1; depth <= max_depth; ++depth) {
     ++counts_.n[size_t(kind)];
-    Hit hit = closest_in_phase(ray, depth == 1 ? kPhaseCameraRays : kPhaseSecondaryRays);
+    Hit hit = closest_in_phase(ray, depth == 1 ? kPhaseCameraRays : kPhaseSecondaryRays, leaving);
+    leaving = kMissId;
     if (depth == 1) result.first_id = hit.id;
     note(uint32_t(hit.id));
     if (!hit.found()) {
@@ -215,6 +235,7 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
         w *= F;
         ray = s.spawn(reflect_dir(ray.dir, s.n), +1);
         kind = kReflectRay;
+        leaving = left_behind(s);
       } else {
         break;
       }
@@ -226,12 +247,13 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
     if (k < 0) {  // total internal reflection: w unchanged
       ray = s.spawn(reflect_dir(ray.dir, s.n), +1);
       kind = kReflectRay;
+      leaving = left_behind(s);
       continue;
     }
     const double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
     const double x = n1 <= n2 ? s.cosi : std::sqrt(k);
     const double F = r0 + (1 - r0) * pow5(1 - x);
-    radiance += w * F * shade1(s.spawn(reflect_dir(ray.dir, s.n), +1));
+    radiance += w * F * shade1(s.spawn(reflect_dir(ray.dir, s.n), +1), left_behind(s));
     w *= 1 - F;
     ray = s.spawn(glm::normalize(eta * ray.dir - (eta * dn + std::sqrt(k)) * s.n), -1);
     kind = kRefractRay;

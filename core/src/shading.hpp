@@ -64,11 +64,14 @@ class Shader {
   Surface surface_at(const Ray& ray, const Hit& hit) const;
   Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin) const;
   // The closest hit of a camera ray (kPhaseCameraRays) or of a secondary one.
-  Hit closest_in_phase(const Ray& ray, Phase phase) const;
+  // `leaving`: an object a secondary ray cannot meet (left_behind), or kMissId.
+  Hit closest_in_phase(const Ray& ray, Phase phase, int32_t leaving) const;
+  int32_t left_behind(const Surface& s) const;
   void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
   glm::dvec3 local_light(const Surface& s, const glm::dvec3& dir);
-  glm::dvec3 shade1(const Ray& ray);
-  bool shadowed(size_t light, const Ray& ray, double distance);
+  glm::dvec3 shade1(const Ray& ray, int32_t leaving);
+  // Whether an object blocks `ray` before `distance`; `self`: an object it cannot meet (or kMissId).
+  bool shadowed(size_t light, const Ray& ray, double distance, int32_t self);
   void note(uint32_t value);
 
   const Scene& scene_;

@@ -12,6 +12,15 @@
 
 namespace prism {
 
+// Up to two objects a shadow ray is known to miss: the convex object it
+// leaves (PRISM_PRIMITIVE_CONVEX, from a front-facing hit) and one the
+// caller has just tested. kMissId: none.
+struct KnownClear {
+  int32_t self = kMissId;
+  int32_t tested = kMissId;
+  bool has(int32_t id) const { return id == self || id == tested; }
+};
+
 class ObjectQuery {
  public:
   virtual ~ObjectQuery() = default;
@@ -23,8 +32,18 @@ class ObjectQuery {
   // scene light `light`. A backend may answer these from data it prepared
   // for the frame's camera and lights; the answers are the same.
   virtual Hit camera_closest(const Ray& ray) const { return closest(ray, 0.0); }
-  virtual int32_t light_occluder(size_t light, const Ray& ray, double tmax) const {
+  // closest(ray, 0) for a ray that leaves a convex object's front face
+  // outward (a reflected ray): that object, `self`, cannot be hit and a
+  // query may skip it (kMissId: none).
+  virtual Hit closest_leaving(const Ray& ray, int32_t self) const {
+    (void)self;
+    return closest(ray, 0.0);
+  }
+  // `clear` names objects the caller already knows do not block the ray; a
+  // query may skip them (the answer is the same).
+  virtual int32_t light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear = {}) const {
     (void)light;
+    (void)clear;
     return occluder(ray, tmax);
   }
   // True when any object is hit with 0 < t < tmax.

@@ -77,6 +77,13 @@ typedef struct PrismField {
 
 /* Descriptor flags. */
 #define PRISM_PRIMITIVE_TRANSFORMABLE 1u /* accepts `center` and `rotation` */
+/* The whole object lies on or behind the tangent plane at each of its
+ * surface points: the boundary of a convex solid (sphere, box) or a flat
+ * shape (plane, ring). A ray that leaves one of its points on the outward
+ * side (the offset origin and the direction both in front of the outward
+ * normal) cannot meet it again, so the CPU backends skip the object in the
+ * shadow rays from its own front-facing hits. Optional (0: not claimed). */
+#define PRISM_PRIMITIVE_CONVEX 2u
 
 typedef struct PrismRay {
   double origin[3];

@@ -55,7 +55,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(box_intersect)>(
-    "box", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(BoxRecord), validate_nothing, pack, bounds,
+    "box", PRISM_PRIMITIVE_TRANSFORMABLE | PRISM_PRIMITIVE_CONVEX, kFields, sizeof(BoxRecord), validate_nothing, pack, bounds,
     f64::abi_surface<f64::box_surface>, kPluginGlsl, "box", refine);
 
 }  // namespace

@@ -75,7 +75,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(plane_intersect)>(
-    "plane", 0, kFields, sizeof(PlaneRecord), validate_nothing, pack, bounds, f64::abi_surface<f64::plane_surface>,
+    "plane", PRISM_PRIMITIVE_CONVEX, kFields, sizeof(PlaneRecord), validate_nothing, pack, bounds, f64::abi_surface<f64::plane_surface>,
     kPluginGlsl, "plane", refine);
 
 }  // namespace

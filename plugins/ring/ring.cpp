@@ -64,7 +64,7 @@ void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(ring_intersect)>(
-    "ring", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(RingRecord), validate, pack, bounds,
+    "ring", PRISM_PRIMITIVE_TRANSFORMABLE | PRISM_PRIMITIVE_CONVEX, kFields, sizeof(RingRecord), validate, pack, bounds,
     f64::abi_surface<f64::ring_surface>, kPluginGlsl, "ring", refine);
 
 }  // namespace

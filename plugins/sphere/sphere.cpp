@@ -46,7 +46,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
 }
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(sphere_intersect)>(
-    "sphere", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(SphereRecord), validate_nothing, pack, bounds,
+    "sphere", PRISM_PRIMITIVE_TRANSFORMABLE | PRISM_PRIMITIVE_CONVEX, kFields, sizeof(SphereRecord), validate_nothing, pack, bounds,
     f64::abi_surface<f64::sphere_surface>, kPluginGlsl, "sphere", refine);
 
 }  // namespace
