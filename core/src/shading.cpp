@@ -1,9 +1,11 @@
 #include "shading.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 #include "prism/texture.hpp"
 
@@ -12,6 +14,24 @@ namespace prism {
 namespace {
 
 double pow5(double x) { return x * x * x * x * x; }  // by multiplication, as the format fixes
+
+// The k for which x < 2^k, for a finite x > 0, read from its exponent bits
+// (a subnormal x gives -1022: it is below 2^-1022).
+int exponent_above(double x) { return int((std::bit_cast<uint64_t>(x) >> 52) & 0x7ffu) - 1022; }
+
+// Whether the Phong term specular * highlight^shininess, added to every
+// channel of the diffuse term, leaves each of them as it is, so that pow()
+// (a twentieth of a frame) need not run. A normal a > 0 has an ulp above
+// a * 2^-53, so a + x rounds back to a for 0 <= x < a * 2^-54; the bound
+// below puts x under 2^(floor(log2 a) - 54) with a factor 2 to spare for
+// the rounding of exponent * shininess. Only a narrow highlight seen from
+// well off its axis passes (highlight < 1/2 gives x < specular * 2^-shininess).
+bool highlight_vanishes(double specular, double highlight, double shininess, const glm::dvec3& diffuse) {
+  const double least = std::min(std::min(diffuse.x, diffuse.y), diffuse.z);
+  if (!(least >= std::numeric_limits<double>::min()) || !(highlight < 1.0) || !(specular > 0.0)) return false;
+  const int least_exponent = exponent_above(least) - 1;  // least >= 2^least_exponent (least is normal)
+  return exponent_above(specular) + exponent_above(highlight) * shininess <= least_exponent - 55;
+}
 
 glm::dvec3 reflect_dir(const glm::dvec3& d, const glm::dvec3& n) { return glm::normalize(d - 2.0 * glm::dot(d, n) * n); }
 
@@ -165,14 +185,16 @@ glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
     bool blocked = shadowed(k, {origin, l}, distance, self);
     note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
     glm::dvec3 visibility = blocked ? scene_.shadow_ambient : glm::dvec3(1.0);
+    const glm::dvec3 diffuse = m.diffuse * s.color * ndl;
     double phong = 0.0;
     if (m.specular > 0) {
       glm::dvec3 r = -l - 2.0 * glm::dot(-l, s.n) * s.n;
       const double highlight = glm::dot(r, -dir);
       // pow(0, shininess >= 1) is 0: only a highlight facing the viewer needs pow.
-      if (highlight > 0) phong = m.specular * std::pow(highlight, m.shininess);
+      if (highlight > 0 && !highlight_vanishes(m.specular, highlight, m.shininess, diffuse))
+        phong = m.specular * std::pow(highlight, m.shininess);
     }
-    sum += energy * visibility * (m.diffuse * s.color * ndl + phong);
+    sum += energy * visibility * (diffuse + phong);
   }
   return sum;
 }

@@ -20,22 +20,30 @@ namespace {
 
 // Euclidean modulo: repeat wrap for negative coordinates too.
 int wrap(int i, int n) {
-  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // the common case, without a division
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n)) return i;  // inside: no division
+  if ((n & (n - 1)) == 0) return i & (n - 1);  // a power of two: two's complement masks any i right
   int m = i % n;
   return m < 0 ? m + n : m;
 }
 
+// wrap(i + 1, n) from at = wrap(i, n), without a second division (a scaled
+// texture, such as a tiled floor, wraps nearly every lookup).
+int wrap_next(int /*i*/, int at, int n) { return at + 1 == n ? 0 : at + 1; }
+int clamp_index(int i, int n) { return std::clamp(i, 0, n - 1); }
+int clamp_next(int i, int /*at*/, int n) { return clamp_index(i + 1, n); }
+
 glm::dvec4 texel(const Texture& t, int x, int y) { return glm::dvec4(t.texels[size_t(y) * t.width + x]); }
 
 // Bilinear blend of the four texels around (x, y) in texel space; `index`
-// maps an integer coordinate and the size to a texel row/column.
-template <typename IndexFn>
-glm::dvec4 bilinear(const Texture& t, double x, double y, IndexFn index) {
+// maps an integer coordinate and the size to a texel row/column, and
+// next(i, index(i, n), n) gives index(i + 1, n).
+template <int (*index)(int, int), int (*next)(int, int, int)>
+glm::dvec4 bilinear(const Texture& t, double x, double y) {
   double fx0 = std::floor(x), fy0 = std::floor(y);
   double fx = x - fx0, fy = y - fy0;
   int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
-  int xa = index(x0, t.width), xb = index(x0 + 1, t.width);
-  int ya = index(y0, t.height), yb = index(y0 + 1, t.height);
+  int xa = index(x0, t.width), xb = next(x0, xa, t.width);
+  int ya = index(y0, t.height), yb = next(y0, ya, t.height);
   glm::dvec4 top = texel(t, xa, ya) * (1 - fx) + texel(t, xb, ya) * fx;
   glm::dvec4 bottom = texel(t, xa, yb) * (1 - fx) + texel(t, xb, yb) * fx;
   return top * (1 - fy) + bottom * fy;
@@ -250,15 +258,14 @@ std::vector<Texture> load_textures(const std::vector<TextureRequest>& requests, 
 }
 
 glm::dvec4 sample_texture(const Texture& texture, glm::dvec2 uv) {
-  return bilinear(texture, uv.x * texture.width - 0.5, uv.y * texture.height - 0.5, wrap);
+  return bilinear<wrap, wrap_next>(texture, uv.x * texture.width - 0.5, uv.y * texture.height - 0.5);
 }
 
 namespace {
 
 // A cube-map face sampled at (s, t) with the texture filter, clamped to the face's edge texels.
 glm::dvec3 sample_face(const Texture& face, double s, double t) {
-  auto clamp_index = [](int i, int n) { return std::clamp(i, 0, n - 1); };
-  return glm::dvec3(bilinear(face, s * face.width - 0.5, t * face.height - 0.5, clamp_index));
+  return glm::dvec3(bilinear<clamp_index, clamp_next>(face, s * face.width - 0.5, t * face.height - 0.5));
 }
 
 }  // namespace
