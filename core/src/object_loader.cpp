@@ -85,8 +85,7 @@ void read_field(json::ObjectReader& r, const PrismField& f, std::vector<double>&
 }
 
 void pack_record(const PrismPrimitiveDesc& desc, const std::vector<double>& values, Object& object) {
-  object.record_storage.assign(desc.record_size, std::byte{0});
-  desc.pack(values.data(), object.record_storage.data());
+  desc.pack(values.data(), object.reset_record(desc.record_size));
 }
 
 void compute_world_bounds(Object& object) {

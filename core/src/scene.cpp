@@ -11,7 +11,7 @@ std::vector<std::string> Scene::plugin_names() const {
 
 size_t Scene::packed_object_bytes() const {
   size_t bytes = 0;
-  for (const Object& object : objects) bytes += sizeof(Object) + object.record_storage.size();
+  for (const Object& object : objects) bytes += sizeof(Object) + object.record_heap.size();
   return bytes;
 }
 
