@@ -1,19 +1,110 @@
 #include "embree_box_filter.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
 #include <limits>
-
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
 
 namespace prism::embree {
 
+namespace {
+
+// Vectors of 2, 4 and 8 doubles (GCC's vector extensions): the same loop
+// compiles to SSE2, AVX2 or AVX-512 in the functions below.
+using Doubles2 = double __attribute__((vector_size(16)));
+using Doubles4 = double __attribute__((vector_size(32)));
+using Doubles8 = double __attribute__((vector_size(64)));
+// The lane indices __builtin_shuffle takes for each.
+template <class V> struct LanesOf;
+template <> struct LanesOf<Doubles2> { using type = int64_t __attribute__((vector_size(16))); };
+template <> struct LanesOf<Doubles4> { using type = int64_t __attribute__((vector_size(32))); };
+template <> struct LanesOf<Doubles8> { using type = int64_t __attribute__((vector_size(64))); };
+
+// Out-parameters, not return values: a vector wider than the baseline's
+// may not cross a function's boundary (GCC's -Wpsabi), even inlined.
+// x in every lane (a shuffle of lane 0: GCC 12 turns a loop of lane
+// stores, or x - V{}, into one masked move per lane).
+template <class V>
+[[gnu::always_inline]] inline void splat(V& v, double x) {
+  v = V{};
+  v[0] = x;
+  v = __builtin_shuffle(v, typename LanesOf<V>::type{});
+}
+
+// Every lane computes exactly the scalar slab test: (lo - o) * inv and
+// (hi - o) * inv, then min and max written as a < b ? a : b (the vector
+// unit's own min and max), so every width gives the same bits.
+template <class V>
+[[gnu::always_inline]] inline void clip_boxes(const BoxFilter::Slabs& slabs, size_t count, const glm::dvec3& origin,
+                                              const glm::dvec3& inv, double t0, double t1, double* enter,
+                                              double* leave) {
+  constexpr size_t kWidth = sizeof(V) / sizeof(double);
+  V o[3], r[3];
+  for (int a = 0; a < 3; ++a) {
+    splat(o[a], origin[a]);
+    splat(r[a], inv[a]);
+  }
+  for (size_t k = 0; k < count; k += kWidth) {  // the slabs are padded to a multiple of every width
+    V t_in, t_out, lo, hi;
+    splat(t_in, t0);
+    splat(t_out, t1);
+    for (int a = 0; a < 3; ++a) {
+      std::memcpy(&lo, slabs.lo[a] + k, sizeof(V));
+      std::memcpy(&hi, slabs.hi[a] + k, sizeof(V));
+      const V near = (lo - o[a]) * r[a];
+      const V far = (hi - o[a]) * r[a];
+      const V low = far < near ? far : near, high = near < far ? far : near;
+      t_in = low < t_in ? t_in : low;
+      t_out = high < t_out ? high : t_out;
+    }
+    std::memcpy(enter + k, &t_in, sizeof(V));
+    std::memcpy(leave + k, &t_out, sizeof(V));
+  }
+}
+
+void clip2(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o, const glm::dvec3& inv, double t0, double t1,
+           double* enter, double* leave) {
+  clip_boxes<Doubles2>(s, n, o, inv, t0, t1, enter, leave);
+}
+
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] void clip4(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o, const glm::dvec3& inv,
+                                   double t0, double t1, double* enter, double* leave) {
+  clip_boxes<Doubles4>(s, n, o, inv, t0, t1, enter, leave);
+}
+
+[[gnu::target("avx512f")]] void clip8(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o,
+                                      const glm::dvec3& inv, double t0, double t1, double* enter, double* leave) {
+  clip_boxes<Doubles8>(s, n, o, inv, t0, t1, enter, leave);
+}
+#endif
+
+}  // namespace
+
+std::vector<int> BoxFilter::clip_widths() {
+  std::vector<int> widths = {2};
+#if defined(__x86_64__)
+  if (__builtin_cpu_supports("avx2")) widths.push_back(4);
+  if (__builtin_cpu_supports("avx512f")) widths.push_back(8);
+#endif
+  return widths;
+}
+
+BoxFilter::ClipFunction BoxFilter::clip_function(int width) {
+  switch (width) {
+#if defined(__x86_64__)
+    case 4: return &clip4;
+    case 8: return &clip8;
+#endif
+    default: return &clip2;
+  }
+}
+
 BoxFilter::BoxFilter(std::span<const int32_t> ids, std::span<const Object> objects, double pad)
-    : pad_(pad), ids_(ids.begin(), ids.end()) {
-  // An even length for the two-wide loop; the spare slot's box, at
-  // +infinity, meets no ray with a finite inverse direction.
-  const size_t slots = ids_.size() + ids_.size() % 2;
+    : pad_(pad), ids_(ids.begin(), ids.end()), clip_(clip_function(clip_widths().back())) {
+  // A length the widest vector divides; the spare slots' boxes, at
+  // +infinity, meet no ray with a finite inverse direction.
+  const size_t slots = (ids_.size() + kSlotMultiple - 1) / kSlotMultiple * kSlotMultiple;
   for (int a = 0; a < 3; ++a) {
     lo_[a].assign(slots, std::numeric_limits<double>::infinity());
     hi_[a].assign(slots, std::numeric_limits<double>::infinity());
@@ -29,40 +120,11 @@ void BoxFilter::set_box(int32_t id, const Box3& box) {
   }
 }
 
-#if defined(__SSE2__)
-// Two boxes at a time. _mm_min_pd(a, b) is (a < b ? a : b) lane by lane,
-// exactly the scalar form below, so both give the same bits.
 void BoxFilter::clip(const glm::dvec3& origin, const glm::dvec3& inv, double t0, double t1, std::span<double> enter,
-                     std::span<double> leave) const {
-  const __m128d o[3] = {_mm_set1_pd(origin.x), _mm_set1_pd(origin.y), _mm_set1_pd(origin.z)};
-  const __m128d r[3] = {_mm_set1_pd(inv.x), _mm_set1_pd(inv.y), _mm_set1_pd(inv.z)};
-  for (size_t k = 0; k < ids_.size(); k += 2) {  // the arrays are padded to an even length
-    __m128d t_in = _mm_set1_pd(t0), t_out = _mm_set1_pd(t1);
-    for (int a = 0; a < 3; ++a) {
-      const __m128d near = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(&lo_[a][k]), o[a]), r[a]);
-      const __m128d far = _mm_mul_pd(_mm_sub_pd(_mm_loadu_pd(&hi_[a][k]), o[a]), r[a]);
-      t_in = _mm_max_pd(_mm_min_pd(far, near), t_in);     // max(t_in, min(near, far)), NaN-free
-      t_out = _mm_min_pd(_mm_max_pd(far, near), t_out);
-    }
-    _mm_storeu_pd(&enter[k], t_in);
-    _mm_storeu_pd(&leave[k], t_out);
-  }
+                     std::span<double> leave, int width) const {
+  const ClipFunction f = width == 0 ? clip_ : clip_function(width);
+  const Slabs slabs{{lo_[0].data(), lo_[1].data(), lo_[2].data()}, {hi_[0].data(), hi_[1].data(), hi_[2].data()}};
+  f(slabs, ids_.size(), origin, inv, t0, t1, enter.data(), leave.data());
 }
-#else
-void BoxFilter::clip(const glm::dvec3& origin, const glm::dvec3& inv, double t0, double t1, std::span<double> enter,
-                     std::span<double> leave) const {
-  for (size_t k = 0; k < ids_.size(); ++k) {
-    double t_in = t0, t_out = t1;
-    for (int a = 0; a < 3; ++a) {
-      const double near = (lo_[a][k] - origin[a]) * inv[a], far = (hi_[a][k] - origin[a]) * inv[a];
-      const double low = far < near ? far : near, high = near < far ? far : near;
-      t_in = low < t_in ? t_in : low;
-      t_out = high < t_out ? high : t_out;
-    }
-    enter[k] = t_in;
-    leave[k] = t_out;
-  }
-}
-#endif
 
 }  // namespace prism::embree

@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
+#include <cstdint>
+#include <cstdio>
 
 #include "embree_box_filter.hpp"
 #include "embree_test_scenes.hpp"
@@ -81,7 +84,7 @@ TEST(BoxFilter, SetBoxMovesTheBox) {
   const std::vector<int32_t> ids = {0, 1, 2};
   BoxFilter filter(ids, objects, 1e-6);
   const glm::dvec3 o(0.5, 0.5, -10), inv(1.0 / 1e-9, 1.0 / 1e-9, 1.0);  // nearly along +z through x = y = 0.5
-  std::array<double, 4> enter, leave;
+  std::array<double, BoxFilter::kMaxObjects> enter, leave;
   filter.clip(o, inv, 0.0, 100.0, enter, leave);
   EXPECT_LE(enter[0], leave[0]);
   EXPECT_GT(enter[1], leave[1]);
@@ -90,6 +93,51 @@ TEST(BoxFilter, SetBoxMovesTheBox) {
   EXPECT_LE(enter[1], leave[1]);
   EXPECT_NEAR(enter[1], 15.0 - 1e-6, 1e-9);  // enters the padded box at z = 5 - pad
   EXPECT_GT(enter[2], leave[2]);
+}
+
+// Every vector width this processor runs gives, bit for bit, the slab test
+// written out here one box at a time (the .cpp's claim), on boxes of every
+// size and rays from near and far, some of them along an axis (inverse
+// direction 1e300).
+TEST(BoxFilter, EveryVectorWidthGivesTheScalarSlabTestsBits) {
+  Rng rng(5);
+  std::vector<Object> objects(BoxFilter::kMaxObjects - 3);
+  std::vector<int32_t> ids;
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const double scale = std::pow(10.0, uniform(rng, -3, 3));
+    const glm::dvec3 c = scale * glm::dvec3(uniform(rng, -6, 6), uniform(rng, -6, 6), uniform(rng, -6, 6));
+    const glm::dvec3 h = scale * glm::dvec3(uniform(rng, 0.01, 1), uniform(rng, 0.01, 1), uniform(rng, 0.01, 1));
+    objects[i].world_bounds = Box3{c - h, c + h};
+    ids.push_back(int32_t(i));
+  }
+  const double pad = 1e-5;
+  const BoxFilter filter(ids, objects, pad);
+  const std::vector<int> widths = BoxFilter::clip_widths();
+  std::printf("[   info   ] vector widths here:");
+  for (int w : widths) std::printf(" %d", w);
+  std::printf("\n");
+  ASSERT_EQ(widths.front(), 2);
+  for (int i = 0; i < 20000; ++i) {
+    const glm::dvec3 o = std::pow(10.0, uniform(rng, -2, 4)) * random_unit(rng);
+    glm::dvec3 inv = 1.0 / random_unit(rng);
+    if (i % 7 == 0) inv[size_t(i % 3)] = (i % 2 ? 1e300 : -1e300);
+    const double t0 = uniform(rng, 0, 1), t1 = t0 + std::pow(10.0, uniform(rng, -1, 5));
+    for (int width : widths) {
+      std::array<double, BoxFilter::kMaxObjects> enter, leave;
+      filter.clip(o, inv, t0, t1, enter, leave, width);
+      for (size_t k = 0; k < objects.size(); ++k) {
+        double t_in = t0, t_out = t1;
+        for (int a = 0; a < 3; ++a) {
+          const double near = (objects[k].world_bounds.lo[a] - pad - o[a]) * inv[a];
+          const double far = (objects[k].world_bounds.hi[a] + pad - o[a]) * inv[a];
+          t_in = std::max(t_in, std::min(near, far));
+          t_out = std::min(t_out, std::max(near, far));
+        }
+        ASSERT_EQ(std::bit_cast<uint64_t>(enter[k]), std::bit_cast<uint64_t>(t_in)) << "width " << width << ", box " << k;
+        ASSERT_EQ(std::bit_cast<uint64_t>(leave[k]), std::bit_cast<uint64_t>(t_out)) << "width " << width << ", box " << k;
+      }
+    }
+  }
 }
 
 }  // namespace

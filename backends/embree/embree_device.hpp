@@ -24,7 +24,8 @@ class Device {
   // Throws RuntimeError("Embree error during <what>: ...") when Embree has
   // reported an error since the last check.
   void check(const char* what);
-  // "3.13.5 (tasking: TBB)".
+  // "3.13.5 (tasking: TBB)", or "3.13.5 (tasking: TBB, kernels up to AVX2)"
+  // where Embree's kernels are capped (on AMD processors; embree_device.cpp).
   std::string describe() const;
   // Bytes Embree holds now (its memory monitor's running total).
   int64_t bytes() const { return bytes_.load(); }
@@ -32,6 +33,7 @@ class Device {
  private:
   static void on_error(void* self, RTCError code, const char* message);
   static bool on_memory(void* self, ssize_t bytes, bool post);
+  bool capped_at_avx2_ = false;
   RTCDevice device_ = nullptr;
   std::mutex mutex_;
   std::string error_;  // first unreported error, empty when none
