@@ -60,6 +60,7 @@ function(prism_add_backend name)
   add_library(prism_backend_${name} MODULE ${ARG_SOURCES})
   target_link_libraries(prism_backend_${name} PRIVATE prism_core ${ARG_LIBS})
   prism_hot_code(prism_backend_${name})
+  prism_link_time_optimised(prism_backend_${name})
   set_target_properties(prism_backend_${name} PROPERTIES
     PREFIX "lib" LIBRARY_OUTPUT_DIRECTORY ${PRISM_PLUGIN_OUTPUT_DIR})
   install(TARGETS prism_backend_${name} LIBRARY DESTINATION lib/prism)
