@@ -178,7 +178,7 @@ PipelineLayout::~PipelineLayout() {
 VkPipeline build_pipeline(const Context& context, const PipelineLayout& layout, const std::string& source,
                           PipelineStats& stats) {
   const auto start = std::chrono::steady_clock::now();
-  const std::string key = gpu::hash_hex(source + '\n' + context.identity());
+  const std::string key = gpu::hash_hex(source + '\n' + context.identity() + '\n' + shrink_passes_tag());
   const fs::path dir = gpu::program_cache_dir("vulkan");
   CacheEntry entry;
   bool hit = false;

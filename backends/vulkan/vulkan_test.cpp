@@ -86,6 +86,39 @@ TEST(VulkanCompiler, CompilesAComputeShaderToSpirv) {
   EXPECT_EQ(spirv[0], 0x07230203u);  // the SPIR-V magic number
 }
 
+// SPIR-V instructions with opcode `op` (the low half of each
+// instruction's first word; the module's header is 5 words).
+int count_opcode(const std::vector<uint32_t>& spirv, uint32_t op) {
+  int count = 0;
+  for (size_t at = 5; at < spirv.size(); at += spirv[at] >> 16) {
+    if ((spirv[at] & 0xffffu) == op) ++count;
+    if ((spirv[at] >> 16) == 0) break;  // malformed: a zero word count would loop forever
+  }
+  return count;
+}
+
+// A helper called twice is inlined and an uncalled one dropped: one
+// function (main) and no call are left, in fewer words than glslang's.
+TEST(VulkanCompiler, ShrinkingInlinesCallsAndDropsDeadFunctions) {
+  const std::string source =
+      "#version 450\nlayout(local_size_x = 1) in;\n"
+      "layout(std430, binding = 0) buffer B { double v[]; };\n"
+      "double twice(double x) { return 2.0LF * x; }\n"
+      "double unused(double x) { return x * x; }\n"
+      "void main() { v[0] = twice(v[1]) + twice(v[2]); }\n";
+  CompileError error;
+  const std::vector<uint32_t> plain = compile_compute_shader(source, error, Shrink::no);
+  ASSERT_FALSE(plain.empty()) << error.log;
+  const std::vector<uint32_t> shrunk = compile_compute_shader(source, error, Shrink::yes);
+  ASSERT_FALSE(shrunk.empty()) << error.log;
+  constexpr uint32_t kOpFunction = 54, kOpFunctionCall = 57;
+  EXPECT_EQ(count_opcode(plain, kOpFunctionCall), 2);
+  EXPECT_EQ(count_opcode(shrunk, kOpFunction), 1);
+  EXPECT_EQ(count_opcode(shrunk, kOpFunctionCall), 0);
+  EXPECT_LT(shrunk.size(), plain.size());
+  EXPECT_EQ(shrunk[0], 0x07230203u);
+}
+
 TEST(VulkanCompiler, ErrorsNameTheLineOfTheGeneratedSource) {
   CompileError error;
   const std::vector<uint32_t> spirv =
