@@ -537,9 +537,13 @@ bool EmbreeQuery::light_candidates(size_t light, const Ray& ray, double tmax, st
   if (!views_ || light >= views_->lights.size()) return false;
   if (const auto& point = views_->points[light]) {
     // Where the ray ends, against the light (embree_view_buffers.cpp, "Reach").
-    const glm::dvec3 end = ray.origin + tmax * ray.dir;
+    // |end - apex| + rounding <= reach, compared in squares (no square
+    // root): the factor 1 - 2^-50 keeps the squares' own rounding (a few
+    // ulps) on the safe side, so no ray the buffer cannot vouch for is taken.
+    const glm::dvec3 to_end = ray.origin + tmax * ray.dir - point->apex();
     const double rounding = 0x1p-48 * (max_abs(ray.origin) + tmax + max_abs(point->apex()));
-    if (!(glm::length(end - point->apex()) + rounding <= point->reach())) return false;
+    const double slack = point->reach() - rounding;
+    if (!(slack > 0 && glm::dot(to_end, to_end) <= slack * slack * (1 - 0x1p-50))) return false;
     out = point->candidates(-ray.dir);
     return true;
   }

@@ -182,7 +182,12 @@ size_t PointBuffer::cell_of(const glm::dvec3& dir) const {
   } else {
     face = dir.z < 0 ? 5 : 4, major = az, u = dir.x, v = dir.y;
   }
-  auto index = [&](double c) { return std::clamp(int((c / major + 1) * 0.5 * resolution_), 0, resolution_ - 1); };
+  // One division for both coordinates: c * (1 / major) may differ from
+  // c / major by an ulp, which moves only a direction within ~1e-16 of a
+  // cell's edge into the next cell, and the lists' cosine margin (the top)
+  // covers that.
+  const double inverse = 1.0 / major;
+  auto index = [&](double c) { return std::clamp(int((c * inverse + 1) * 0.5 * resolution_), 0, resolution_ - 1); };
   return size_t((face * resolution_ + index(v)) * resolution_ + index(u));
 }
 
@@ -207,7 +212,8 @@ ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSpher
   resolution_ = resolution_for(kGridBudget, 1, spheres.size(), 4, 128);
   lo_ = lo;
   cell_ = std::max(hi.x - lo.x, hi.y - lo.y) / resolution_;
-  if (!(cell_ > 0) || !std::isfinite(cell_)) {
+  inverse_cell_ = 1.0 / cell_;
+  if (!(cell_ > 0) || !std::isfinite(cell_) || !std::isfinite(inverse_cell_)) {
     resolution_ = 0;
     return;
   }
@@ -229,7 +235,10 @@ bool ParallelBuffer::covers(const glm::dvec3& origin) const { return max_abs(ori
 
 std::span<const int32_t> ParallelBuffer::candidates(const glm::dvec3& origin) const {
   if (resolution_ == 0) return none_;
-  const double u = (glm::dot(origin, across_[0]) - lo_.x) / cell_, v = (glm::dot(origin, across_[1]) - lo_.y) / cell_;
+  // Multiplied by the inverse cell size: an ulp off the division, covered
+  // by the cell each list has on every side.
+  const double u = (glm::dot(origin, across_[0]) - lo_.x) * inverse_cell_;
+  const double v = (glm::dot(origin, across_[1]) - lo_.y) * inverse_cell_;
   // Outside the grid (and its rounding): no disc holds the point.
   if (!(u >= -0.5 && v >= -0.5 && u < resolution_ + 0.5 && v < resolution_ + 0.5)) return none_;
   const int i = std::clamp(int(std::floor(u)), 0, resolution_ - 1), j = std::clamp(int(std::floor(v)), 0, resolution_ - 1);

@@ -82,6 +82,7 @@ class ParallelBuffer {
   double origin_limit_ = 0;
   glm::dvec2 lo_{0};      // the grid's corner
   double cell_ = 1;       // its cells' side
+  double inverse_cell_ = 1;
   int resolution_ = 0;    // cells per side
   CellLists cells_;
   std::span<const int32_t> none_;

@@ -118,11 +118,6 @@ bool reject_hit(const Object& object, double t, double tmin, double tmax) {
   return false;
 }
 
-bool blocks(const Object& object, const Ray& ray, double tmax, IntersectEntry entry) {
-  PrismHit hit;
-  return intersect_object(object, ray, 0.0, tmax, hit, entry) && hit.t < tmax;
-}
-
 SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by) {
   PrismRay local = to_local(object, ray);
   PrismSurface s = plugin_surface(object, local, hit);

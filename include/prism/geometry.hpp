@@ -114,8 +114,12 @@ inline uint32_t blocks_packet(const Object& object, const Ray* rays, uint32_t ac
   return object.desc->occluded_packet(object.record(), &packet, active);
 }
 
-// Whether one object is hit with 0 < t < tmax: the occlusion test.
-bool blocks(const Object& object, const Ray& ray, double tmax, IntersectEntry entry = kIntersectDouble);
+// Whether one object is hit with 0 < t < tmax: the occlusion test. Inline
+// like intersect_object: a backend's shadow-ray loop calls it per candidate.
+inline bool blocks(const Object& object, const Ray& ray, double tmax, IntersectEntry entry = kIntersectDouble) {
+  PrismHit hit;
+  return intersect_object(object, ray, 0.0, tmax, hit, entry) && hit.t < tmax;
+}
 
 // World-space point, outward normal and uv of a hit found by intersect_object.
 // A plugin's surface with a non-finite point, normal or uv (or a polish to a
