@@ -20,10 +20,10 @@ template <> struct LanesOf<Doubles2> { using type = int64_t __attribute__((vecto
 template <> struct LanesOf<Doubles4> { using type = int64_t __attribute__((vector_size(32))); };
 template <> struct LanesOf<Doubles8> { using type = int64_t __attribute__((vector_size(64))); };
 
-// Out-parameters, not return values: a vector wider than the baseline's
-// may not cross a function's boundary (GCC's -Wpsabi), even inlined.
-// x in every lane (a shuffle of lane 0: GCC 12 turns a loop of lane
-// stores, or x - V{}, into one masked move per lane).
+// x in every lane. An out-parameter, not a return value: a vector wider
+// than the baseline's may not cross a function's boundary (GCC's -Wpsabi),
+// even inlined. A shuffle of lane 0, because GCC 12 turns a loop of lane
+// stores, or x - V{}, into one masked move per lane.
 template <class V>
 [[gnu::always_inline]] inline void splat(V& v, double x) {
   v = V{};
