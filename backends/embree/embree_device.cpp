@@ -79,13 +79,15 @@ std::string Device::describe() const {
   std::string text = std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MAJOR)) + "." +
                      std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_MINOR)) + "." +
                      std::to_string(property(RTC_DEVICE_PROPERTY_VERSION_PATCH));
-  const std::string kernels = capped_at_avx2_ ? ", kernels up to AVX2" : "";
+  std::string details;
   switch (property(RTC_DEVICE_PROPERTY_TASKING_SYSTEM)) {
-    case 0: return text + " (tasking: internal" + kernels + ")";
-    case 1: return text + " (tasking: TBB" + kernels + ")";
-    case 2: return text + " (tasking: PPL" + kernels + ")";
-    default: return text + (capped_at_avx2_ ? " (kernels up to AVX2)" : "");
+    case 0: details = "tasking: internal"; break;
+    case 1: details = "tasking: TBB"; break;
+    case 2: details = "tasking: PPL"; break;
+    default: break;
   }
+  if (capped_at_avx2_) details += (details.empty() ? "" : ", ") + std::string("kernels up to AVX2");
+  return details.empty() ? text : text + " (" + details + ")";
 }
 
 }  // namespace prism::embree

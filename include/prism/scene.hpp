@@ -90,7 +90,7 @@ struct alignas(64) Object {
     record_size = static_cast<uint32_t>(size);
     record_inline.fill(std::byte{0});
     record_heap.assign(size > kInlineRecordBytes ? size : 0, std::byte{0});
-    return size <= kInlineRecordBytes ? record_inline.data() : record_heap.data();
+    return const_cast<void*>(record());
   }
 };
 

@@ -26,24 +26,21 @@ bool inside(const Object& object, const void* p) {
   return at >= begin && at < begin + sizeof(Object);
 }
 
-TEST(ObjectRecord, SmallRecordIsInlineZeroedAndAligned) {
+// reset_record(bytes) returns record(), 16-byte aligned and zeroed, inside
+// the object or not.
+void expect_fresh_record(size_t bytes, bool inside_expected) {
   Object object;
-  void* record = object.reset_record(32);
+  void* record = object.reset_record(bytes);
   EXPECT_EQ(record, object.record());
-  EXPECT_TRUE(inside(object, record));
+  EXPECT_EQ(inside(object, record), inside_expected) << bytes << " bytes";
   EXPECT_EQ(reinterpret_cast<uintptr_t>(record) % 16, 0u);
-  EXPECT_TRUE(zeroed(record, 32));
+  EXPECT_TRUE(zeroed(record, bytes));
   EXPECT_EQ(reinterpret_cast<uintptr_t>(&object) % 64, 0u);
 }
 
-TEST(ObjectRecord, LargeRecordIsOnTheHeapZeroedAndAligned) {
-  Object object;
-  void* record = object.reset_record(48);
-  EXPECT_EQ(record, object.record());
-  EXPECT_FALSE(inside(object, record));
-  EXPECT_EQ(reinterpret_cast<uintptr_t>(record) % 16, 0u);
-  EXPECT_TRUE(zeroed(record, 48));
-}
+TEST(ObjectRecord, SmallRecordIsInlineZeroedAndAligned) { expect_fresh_record(32, true); }
+
+TEST(ObjectRecord, LargeRecordIsOnTheHeapZeroedAndAligned) { expect_fresh_record(48, false); }
 
 TEST(ObjectRecord, ResetClearsAnOldRecordOfEitherKind) {
   Object object;
