@@ -2,6 +2,8 @@
 
 #include <fcntl.h>
 #include <sys/stat.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -96,10 +98,13 @@ constexpr int kJpegQuality = 95;
 ImageFile png_pixels(const Image& image) {
   ImageFile file{image.width, image.height, 3, {}, PixelFormat::UInt8, {}};
   file.pixels.resize(image.rgb.size());
-  for (size_t i = 0; i < file.pixels.size(); ++i) {
-    // round(255 * oetf(clamp(v))) exactly, so the writer's own quantisation is a no-op.
-    file.pixels[i] = static_cast<float>(linear_to_srgb8(image.rgb[i]) / 255.0);
-  }
+  // In parallel: a 1280x720 frame's 2.8 M values took ~15 ms on one thread.
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, file.pixels.size(), 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      // round(255 * oetf(clamp(v))) exactly, so the writer's own quantisation is a no-op.
+      file.pixels[i] = static_cast<float>(linear_to_srgb8(image.rgb[i]) / 255.0);
+    }
+  });
   return file;
 }
 

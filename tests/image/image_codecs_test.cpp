@@ -223,6 +223,30 @@ TEST_F(ImageCodecs, SixteenBitPngReadsBackThroughOpenImageIO) {
   for (size_t i = 0; i < codes.size(); ++i) EXPECT_EQ(std::lround(read.pixels[i] * 65535.0f), codes[i]) << i;
 }
 
+// The writer deflates its filtered rows in bands of 256 KiB, in parallel,
+// and joins them into one zlib stream: a 16-bit RGBA image of 400 x 300
+// (960,300 filtered bytes: four bands, their seams inside rows) of
+// pseudo-random codes must read back code for code.
+TEST_F(ImageCodecs, PngOfSeveralCompressedBandsReadsBackThroughOpenImageIO) {
+  const int width = 400, height = 300, channels = 4;
+  std::vector<long> codes(size_t(width) * height * channels);
+  uint32_t state = 12345;
+  for (long& code : codes) {
+    state = state * 1664525u + 1013904223u;  // Numerical Recipes' LCG: any fixed sequence will do
+    code = long(state >> 16);
+  }
+  ImageFile image{width, height, channels, {}, PixelFormat::UInt16, {}};
+  for (const long code : codes) image.pixels.push_back(float(double(code) / 65535.0));
+  const fs::path file = dir_ / "bands.png";
+  write_image_file(file, image, PixelFormat::UInt16);
+  const OiioImage read = read_with_oiio(file);
+  ASSERT_EQ(read.width, width);
+  ASSERT_EQ(read.height, height);
+  ASSERT_EQ(read.format, OIIO::TypeDesc::UINT16);
+  ASSERT_EQ(read.pixels.size(), codes.size());
+  for (size_t i = 0; i < codes.size(); ++i) ASSERT_EQ(std::lround(read.pixels[i] * 65535.0f), codes[i]) << i;
+}
+
 TEST_F(ImageCodecs, EveryPngLayoutReadsAsOpenImageIOReadsIt) {
   write_png_raw(dir_ / "grey8.png", 3, 1, 8, PNG_COLOR_TYPE_GRAY, {{0, 128, 255}});
   write_png_raw(dir_ / "grey16.png", 2, 1, 16, PNG_COLOR_TYPE_GRAY, {{0x12, 0x34, 0xff, 0xfe}});
