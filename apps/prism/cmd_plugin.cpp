@@ -7,7 +7,8 @@
 // Loads one primitive plugin file, prints its descriptor (type, version,
 // ABI version, fields, GLSL, refine), checks its packet entries against
 // its scalar intersector lane by lane and measures its float entry against
-// it (the stability suite's float caps), then traces random rays at one object
+// it (the stability suite's float caps), checks that its surface asked for
+// no uv gives the same t, point and normal, then traces random rays at one object
 // of its type through the reference backend (the plugin's own CPU
 // intersector, in double) and through every other usable backend, in its own
 // precision and, where it has a float path, in float (embree:
@@ -286,6 +287,11 @@ int run_plugin_check(const PluginCheckArgs& args) {
               all_pass ? "agree with intersect bit for bit" : "FAIL: disagree with intersect", packets.rays,
               all_pass ? "" : ": ", packets.first.c_str());
   all_pass = print_float_check(check_float_entry(scene.objects[0], rays)) && all_pass;
+  const PacketCheck surfaces = check_surface_without_uv(scene.objects[0], rays);
+  std::printf("  surface without uv: %s on %d hits%s%s\n",
+              surfaces.mismatches == 0 ? "the same t, point and normal bit for bit" : "FAIL: differs", surfaces.rays,
+              surfaces.mismatches == 0 ? "" : ": ", surfaces.first.c_str());
+  all_pass = surfaces.mismatches == 0 && all_pass;
 
   std::vector<std::string> names = args.backends;
   if (names.empty()) {

@@ -102,6 +102,22 @@ PacketCheck check_packet_entries(const Object& object, std::span<const TraceQuer
   return out;
 }
 
+PacketCheck check_surface_without_uv(const Object& object, std::span<const TraceQuery> given) {
+  PacketCheck out;
+  for (const Ray& ray : rays_with_stiff_cases(object, given)) {
+    PrismHit hit;
+    if (!intersect_object(object, ray, 0.0, kInfinity, hit)) continue;
+    ++out.rays;
+    const SurfacePoint all = surface_of(object, ray, hit, kIntersectDouble, true);
+    const SurfacePoint no_uv = surface_of(object, ray, hit, kIntersectDouble, false);
+    const bool same = std::memcmp(&all.t, &no_uv.t, sizeof all.t) == 0 &&
+                      std::memcmp(&all.position, &no_uv.position, sizeof all.position) == 0 &&
+                      std::memcmp(&all.normal, &no_uv.normal, sizeof all.normal) == 0;
+    if (!same && out.mismatches++ == 0) out.first = describe("surface without uv", ray, 0.0, kInfinity);
+  }
+  return out;
+}
+
 namespace {
 
 // Both entries on each ray; the relative t errors where both hit.

@@ -1,7 +1,8 @@
 // The entries of a primitive plugin beside its scalar `intersect`, for
 // `prism plugin check` and the tests that run it on every plugin built: the
 // packet entries (intersect_packet, occluded_packet) lane by lane, bit for
-// bit; the float entry (intersect_float) measured against it.
+// bit; the float entry (intersect_float) measured against it; `surface`
+// without uv against `surface`, bit for bit.
 #pragma once
 
 #include <span>
@@ -20,6 +21,11 @@ struct PacketCheck {
 
 // `rays` as given, plus a ray from inside and a grazing ray at each hit.
 PacketCheck check_packet_entries(const Object& object, std::span<const TraceQuery> rays);
+
+// `surface` asked for no uv (PRISM_HIT_SKIP_UV) against `surface` asked for
+// everything, on the hits of the same rays: t, point and normal bit for bit
+// (`rays` counts the hits).
+PacketCheck check_surface_without_uv(const Object& object, std::span<const TraceQuery> rays);
 
 // The float entry against the double one, the double answer taken as the
 // truth: on the random rays (`given`), and on the rays from inside and the

@@ -145,7 +145,7 @@ std::vector<TraceResult> trace_cpu(const Scene& scene, const ObjectQuery& query,
     r.t = hit.t;
     r.id = hit.id;
     if (hit.id >= 0) {
-      const SurfacePoint surface = surface_of(scene.objects[size_t(hit.id)], ray, hit.prim, query.entry());
+      const SurfacePoint surface = surface_of(scene.objects[size_t(hit.id)], ray, hit.prim, query.entry(), false);
       r.t = surface.t;
       r.normal = surface.normal;
     } else if (hit.found()) {

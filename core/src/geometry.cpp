@@ -78,7 +78,9 @@ void check_surface(const Object& object, const PrismSurface& s) {
   }
 }
 
-PrismSurface plugin_surface(const Object& object, const PrismRay& local, const PrismHit& hit) {
+PrismSurface plugin_surface(const Object& object, const PrismRay& local, const PrismHit& found, bool want_uv) {
+  PrismHit hit = found;
+  hit.flags = want_uv ? 0u : PRISM_HIT_SKIP_UV;  // whatever `intersect` left there
   PrismSurface s{};
   object.desc->surface(object.record(), &local, &hit, &s);
   check_surface(object, s);
@@ -118,9 +120,10 @@ bool reject_hit(const Object& object, double t, double tmin, double tmax) {
   return false;
 }
 
-SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by) {
+SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by,
+                        bool want_uv) {
   PrismRay local = to_local(object, ray);
-  PrismSurface s = plugin_surface(object, local, hit);
+  PrismSurface s = plugin_surface(object, local, hit, want_uv);
   double t = hit.t;
   if (object.desc->refine && found_by == kIntersectDouble && ill_conditioned(local, hit.t, s)) {
     const PrismRayExt ext = to_local_ext(object, ray);
@@ -129,7 +132,7 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
     if (!std::isfinite(polished.t))
       throw RuntimeError(fault_message(object, "refined a hit to t = " + std::to_string(polished.t)));
     if (polished.t != hit.t) {
-      s = plugin_surface(object, local, polished);
+      s = plugin_surface(object, local, polished, want_uv);
       t = polished.t;
     }
   }

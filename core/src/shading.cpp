@@ -86,7 +86,8 @@ int32_t Shader::left_behind(const Surface& s) const {
 
 Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   const Object& object = scene_.objects[size_t(hit.id)];
-  SurfacePoint sp = surface_of(object, ray, hit.prim, query_.entry());
+  const Material& material = scene_.materials[size_t(object.material)];
+  SurfacePoint sp = surface_of(object, ray, hit.prim, query_.entry(), material.texture >= 0);
   Surface s;
   s.position = sp.position;
   s.outward = sp.normal;
@@ -94,7 +95,7 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   s.n = s.front ? sp.normal : -sp.normal;
   s.cosi = std::clamp(-glm::dot(ray.dir, s.n), 0.0, 1.0);
   s.t = sp.t;
-  s.material = &scene_.materials[size_t(object.material)];
+  s.material = &material;
   s.id = hit.id;
   s.color = s.material->color;
   s.alpha = 1.0;

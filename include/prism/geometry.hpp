@@ -129,8 +129,10 @@ inline bool blocks(const Object& object, const Ray& ray, double tmax, IntersectE
 // `refine` first polishes t in long double; `t` is the result. A hit found
 // by `intersect_float` is not polished: the float path models a GPU kernel,
 // which has no wider type to polish in.
+// `want_uv` false: the caller will not read `uv` (PRISM_HIT_SKIP_UV; it
+// may then be 0), and point, normal and t are the same bits.
 SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit,
-                        IntersectEntry found_by = kIntersectDouble);
+                        IntersectEntry found_by = kIntersectDouble, bool want_uv = true);
 
 // Whether a hit at `t` on the local ray, with local surface point and
 // normal `s`, is that ill-conditioned (exposed for tests).

@@ -113,8 +113,15 @@ typedef struct PrismHit {
   double t;
   double data[3]; /* plugin-private, read back by `surface` */
   uint32_t part;  /* plugin-private (a face, a root index...) */
-  uint32_t reserved;
+  uint32_t flags; /* PRISM_HIT_*: what the core asks of `surface`; 0 from `intersect` */
 } PrismHit;
+
+/* PrismHit.flags, set by the core on the hit it passes to `surface`. */
+/* The caller will not read uv (the hit's material has no texture): the
+ * plugin may leave uv at 0 and skip computing it. Point and normal must be
+ * exactly what they are without the bit. A plugin that ignores the bit
+ * loses nothing but the time (a new bit, not a new ABI version). */
+#define PRISM_HIT_SKIP_UV 1u
 
 typedef struct PrismSurface {
   double point[3];  /* hit point in the local frame, re-projected onto the surface */

@@ -26,13 +26,16 @@ TEST_F(PluginCheck, PrintsTheDescriptorAndPassesOnEmbree) {
 
 // Every plugin built, so a new one is covered without an edit here: its
 // packet entries answer each lane exactly as its scalar intersector does,
-// on random lanes and bounds, rays from inside and grazing rays.
+// on random lanes and bounds, rays from inside and grazing rays; and its
+// surface asked for no uv (PRISM_HIT_SKIP_UV) gives the same t, point and
+// normal, bit for bit, on those rays' hits.
 class PacketEntries : public CliTest, public ::testing::WithParamInterface<std::string> {};
 
 TEST_P(PacketEntries, AgreeWithTheScalarIntersectorBitForBit) {
   RunResult r = run({"plugin", "check", built_plugin(GetParam()).string(), "-b", "reference", "--rays", "600"});
   ASSERT_TRUE(ExitedWith(r, 0)) << r.out;
   EXPECT_NE(r.out.find("packet entries: agree with intersect bit for bit"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("surface without uv: the same t, point and normal bit for bit"), std::string::npos) << r.out;
   // The same run measures the float entry: within the float caps, or the
   // double one standing in for a plugin without a float instantiation.
   EXPECT_TRUE(contains_any(r.out, "float entry: within the float caps|float entry: the double intersector stands in"))

@@ -52,9 +52,18 @@ int abi_intersect(const void* record, const ::PrismRay* ray, double tmin, double
   return 1;
 }
 
+// Two calls of the inlined `Surface`: where the core asks for no uv
+// (PRISM_HIT_SKIP_UV), nothing reads the copy's uv, and the compiler drops
+// the arithmetic that only uv needs (a sphere's atan2 and asin), while the
+// point and normal come from the same operations as in the other call.
 template <SharedSurface Surface>
 void abi_surface(const void* record, const ::PrismRay* ray, const ::PrismHit* hit, ::PrismSurface* out) {
   PrismSurface s;
+  if ((hit->flags & PRISM_HIT_SKIP_UV) != 0) {
+    Surface(prism_record_at(record), ray_from_abi(ray), hit_from_abi(hit), s);
+    write_surface(out, s.point, s.normal, 0.0, 0.0);
+    return;
+  }
   Surface(prism_record_at(record), ray_from_abi(ray), hit_from_abi(hit), s);
   write_surface(out, s.point, s.normal, s.uv.x, s.uv.y);
 }
