@@ -14,7 +14,7 @@
 # random spheres (Embree's BVH), then every conformance scene once, so that
 # each primitive, light and material path has counts. Trained on the
 # showcase alone, the spheres' frames came out ~10 % slower than without a
-# profile. About 10 s on a 2-core machine.
+# profile. About 3 s on a 2-core machine.
 #
 # Exit status: 0 when every render succeeded, 1 otherwise, 2 on bad usage.
 set -euo pipefail

@@ -232,13 +232,15 @@ std::vector<png_byte> filtered_rows(const ImageFile& image, bool sixteen) {
   return out;
 }
 
-// zlib level 2 with the "sub" filter: on a 1280x720 render 11 ms and 74 KB,
-// against 62 ms and 53 KB for libpng's default (level 6, every filter tried
-// per row); level 1 is no faster and 2 % larger.
+// zlib level 2 with the "sub" filter: several times faster than libpng's
+// default (level 6, every filter tried per row) for ~40 % larger files;
+// level 1 was no faster and 2 % larger.
 constexpr int kZlibLevel = 2;
 // Bands of the filtered rows deflated independently, in parallel: a fixed
-// size, so the file does not depend on the thread count. Each band loses
-// the matches that reach back into the one before it (~0.5 % larger).
+// size, so the file does not depend on the thread count. A band loses the
+// matches that reach back into the one before it: nothing measurable (the
+// showcase at 1280x720: 515,371 bytes, against 515,881 from libpng's own
+// deflate at the same level).
 constexpr size_t kBandBytes = size_t(1) << 18;
 
 // One band as raw deflate data: ended by a full flush (byte-aligned, no
@@ -253,7 +255,8 @@ std::vector<png_byte> deflate_band(const png_byte* data, size_t size, bool last)
   z.next_out = out.data();
   z.avail_out = uInt(out.size());
   const int result = deflate(&z, last ? Z_FINISH : Z_FULL_FLUSH);
-  const bool done = last ? result == Z_STREAM_END : result == Z_OK && z.avail_in == 0;
+  // A flush is whole when input is used up and output room is left over.
+  const bool done = last ? result == Z_STREAM_END : result == Z_OK && z.avail_in == 0 && z.avail_out > 0;
   out.resize(z.total_out);
   deflateEnd(&z);
   if (!done) throw CodecError("zlib: compressing failed");
