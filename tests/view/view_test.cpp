@@ -202,7 +202,10 @@ TEST_P(ViewBackend, KeysAndMouseDriveTheViewer) {
   ASSERT_NE(window, 0u) << "no viewer window appeared\n" << child.wait(1);
 
   auto screenshot = [&](int n) -> Pixels {
-    x.tap_key(window, "p");
+    if (!x.tap_key(window, "p")) {
+      ADD_FAILURE() << "P not delivered: " << x.last_error() << "\n" << child.wait(1);
+      return {};
+    }
     const fs::path file = work_ / ("prism-view-" + std::to_string(n) + ".png");
     if (!wait_for_file(file, 60)) {
       ADD_FAILURE() << file << " did not appear\n" << child.wait(1);
@@ -217,25 +220,25 @@ TEST_P(ViewBackend, KeysAndMouseDriveTheViewer) {
   std::string where;
   EXPECT_EQ(differing_pixels(first, rendered, 0, kHeight, &where), 0) << "first difference at " << where;
 
-  x.drag(window, 40, 45, 100, 45);  // 60 pixels right: a 0.3 radian turn
+  ASSERT_TRUE(x.drag(window, 40, 45, 100, 45)) << x.last_error();  // 60 pixels right: a 0.3 radian turn
   const Pixels orbited = screenshot(2);
   ASSERT_EQ(orbited.width, kWidth);
   EXPECT_GT(differing_pixels(orbited, rendered, 0, kHeight), kWidth * kHeight / 20);
 
-  x.tap_key(window, "r");
+  ASSERT_TRUE(x.tap_key(window, "r")) << x.last_error();
   const Pixels reset = screenshot(3);
   ASSERT_EQ(reset.width, kWidth);
   EXPECT_EQ(differing_pixels(reset, rendered, 0, kHeight, &where), 0) << "first difference at " << where;
 
   // The render follows the window's size.
-  x.resize(window, 200, 120);
+  ASSERT_TRUE(x.resize(window, 200, 120)) << x.last_error();
   const Pixels resized = screenshot(4);
   const Pixels rendered_resized = reference_render(backend, 200, 120);
   ASSERT_EQ(resized.width, 200);
   ASSERT_EQ(resized.height, 120);
   EXPECT_EQ(differing_pixels(resized, rendered_resized, 0, 120, &where), 0) << "first difference at " << where;
 
-  x.tap_key(window, "Escape");
+  EXPECT_TRUE(x.tap_key(window, "Escape")) << x.last_error();
   RunResult r = child.wait(60);
   EXPECT_TRUE(ExitedWith(r, 0));
   EXPECT_NE(r.out.find("saved prism-view-4.png"), std::string::npos) << r;
@@ -249,6 +252,19 @@ TEST_P(ViewBackend, KeysAndMouseDriveTheViewer) {
 }
 
 PRISM_INSTANTIATE_BACKEND_TESTS(ViewBackend);
+
+// The X client the tests drive the viewer with reports a refused event
+// instead of letting Xlib end the test binary: a key sent to a window that
+// does not exist is BadWindow, and false.
+TEST_F(ViewCli, XClientReportsAnEventTheServerRefused) {
+  if (!start_x("reference")) return;
+  XClient x(x_->display());
+  ASSERT_TRUE(x.ok());
+  EXPECT_FALSE(x.tap_key(0x3fffff, "p"));
+  EXPECT_NE(x.last_error().find("BadWindow"), std::string::npos) << x.last_error();
+  EXPECT_FALSE(x.resize(0x3fffff, 10, 10));
+  EXPECT_FALSE(x.drag(0x3fffff, 0, 0, 1, 1));
+}
 
 // sphere.json at 4 spp, its texture found from anywhere.
 fs::path write_four_spp_scene(const fs::path& folder) {
@@ -297,19 +313,19 @@ TEST_F(ViewCli, RefinesToTheScenesSppThenRendersNothingMore) {
   ASSERT_TRUE(x.ok());
   const unsigned long window = x.find_window("prism view", 60);
   ASSERT_NE(window, 0u) << "no viewer window appeared\n" << child.wait(1);
-  x.tap_key(window, "p");  // saved once the frame reaches 4 spp
+  ASSERT_TRUE(x.tap_key(window, "p")) << x.last_error();  // saved once the frame reaches 4 spp
   ASSERT_TRUE(wait_for_file(work_ / "prism-view-1.png", 60)) << child.wait(1);
   const Pixels shown = read_png(work_ / "prism-view-1.png");
   std::string where;
   EXPECT_EQ(differing_pixels(shown, rendered, 0, kHeight, &where), 0) << "first difference at " << where;
 
   std::this_thread::sleep_for(std::chrono::seconds(1));
-  x.tap_key(window, "p");  // the frame is final: saved at once, nothing rendered
+  ASSERT_TRUE(x.tap_key(window, "p")) << x.last_error();  // the frame is final: saved at once, nothing rendered
   ASSERT_TRUE(wait_for_file(work_ / "prism-view-2.png", 60)) << child.wait(1);
-  x.tap_key(window, "c");
-  x.tap_key(window, "h");
+  ASSERT_TRUE(x.tap_key(window, "c")) << x.last_error();
+  ASSERT_TRUE(x.tap_key(window, "h")) << x.last_error();
   std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  x.tap_key(window, "Escape");
+  EXPECT_TRUE(x.tap_key(window, "Escape")) << x.last_error();
   const RunResult r = child.wait(60);
   ASSERT_TRUE(ExitedWith(r, 0));
   EXPECT_NE(r.out.find("prism view: 3 frames at 160x90 with reference"), std::string::npos) << r;

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -100,7 +101,23 @@ XServer::~XServer() {
   }
 }
 
-XClient::XClient(const std::string& display) { display_ = XOpenDisplay(display.c_str()); }
+namespace {
+
+// Xlib's default handler prints the error and exits the whole test binary;
+// this one keeps the error for the request that caused it to report.
+XErrorEvent last_x_error{};
+
+int record_x_error(Display* /*display*/, XErrorEvent* error) {
+  last_x_error = *error;
+  return 0;
+}
+
+}  // namespace
+
+XClient::XClient(const std::string& display) {
+  XSetErrorHandler(record_x_error);
+  display_ = XOpenDisplay(display.c_str());
+}
 
 XClient::~XClient() {
   if (display_) XCloseDisplay(display_);
@@ -140,12 +157,30 @@ unsigned long XClient::find_window(const std::string& prefix, double seconds) {
   return 0;
 }
 
-void XClient::send(unsigned long window, long mask, void* event) {
-  XSendEvent(display_, window, True, mask, static_cast<XEvent*>(event));
-  XFlush(display_);
+// Waits until the server has handled every request sent, and returns the
+// error code of a request that failed meanwhile (0: none).
+int XClient::sync_for_error() {
+  last_x_error = XErrorEvent{};
+  XSync(display_, False);
+  if (last_x_error.error_code == 0) return 0;
+  char text[128] = "";
+  XGetErrorText(display_, last_x_error.error_code, text, sizeof text);
+  last_error_ = std::string(text) + " (request " + std::to_string(int(last_x_error.request_code)) + ", resource 0x" +
+                [](unsigned long id) {
+                  char hex[32];
+                  std::snprintf(hex, sizeof hex, "%lx", id);
+                  return std::string(hex);
+                }(last_x_error.resourceid) +
+                ")";
+  return last_x_error.error_code;
 }
 
-void XClient::tap_key(unsigned long window, const char* keysym_name) {
+int XClient::send(unsigned long window, long mask, void* event) {
+  XSendEvent(display_, window, True, mask, static_cast<XEvent*>(event));
+  return sync_for_error();
+}
+
+bool XClient::tap_key(unsigned long window, const char* keysym_name) {
   XEvent event{};
   XKeyEvent& key = event.xkey;
   key.display = display_;
@@ -157,18 +192,19 @@ void XClient::tap_key(unsigned long window, const char* keysym_name) {
   key.keycode = XKeysymToKeycode(display_, XStringToKeysym(keysym_name));
   key.type = KeyPress;
   key.time = ++time_;
-  send(window, KeyPressMask, &event);
+  if (send(window, KeyPressMask, &event) != 0) return false;
   key.type = KeyRelease;
   key.time = ++time_;
-  send(window, KeyReleaseMask, &event);
+  const int release = send(window, KeyReleaseMask, &event);
+  return release == 0 || release == BadWindow;  // BadWindow: the press closed it
 }
 
-void XClient::resize(unsigned long window, int width, int height) {
+bool XClient::resize(unsigned long window, int width, int height) {
   XResizeWindow(display_, window, unsigned(width), unsigned(height));
-  XSync(display_, False);
+  return sync_for_error() == 0;
 }
 
-void XClient::drag(unsigned long window, int x0, int y0, int x1, int y1) {
+bool XClient::drag(unsigned long window, int x0, int y0, int x1, int y1) {
   auto motion = [&](int x, int y, unsigned state) {
     XEvent event{};
     XMotionEvent& m = event.xmotion;
@@ -181,7 +217,7 @@ void XClient::drag(unsigned long window, int x0, int y0, int x1, int y1) {
     m.state = state;
     m.same_screen = True;
     m.time = ++time_;
-    send(window, PointerMotionMask, &event);
+    return send(window, PointerMotionMask, &event) == 0;
   };
   auto button = [&](int type, int x, int y) {
     XEvent event{};
@@ -196,13 +232,10 @@ void XClient::drag(unsigned long window, int x0, int y0, int x1, int y1) {
     b.state = type == ButtonRelease ? Button1Mask : 0;
     b.same_screen = True;
     b.time = ++time_;
-    send(window, type == ButtonPress ? ButtonPressMask : ButtonReleaseMask, &event);
+    return send(window, type == ButtonPress ? ButtonPressMask : ButtonReleaseMask, &event) == 0;
   };
-  motion(x0, y0, 0);
-  button(ButtonPress, x0, y0);
-  motion((x0 + x1) / 2, (y0 + y1) / 2, Button1Mask);
-  motion(x1, y1, Button1Mask);
-  button(ButtonRelease, x1, y1);
+  return motion(x0, y0, 0) && button(ButtonPress, x0, y0) && motion((x0 + x1) / 2, (y0 + y1) / 2, Button1Mask) &&
+         motion(x1, y1, Button1Mask) && button(ButtonRelease, x1, y1);
 }
 
 }  // namespace prism::view_test

@@ -45,16 +45,25 @@ class XClient {
   // A mapped top-level window whose title starts with `prefix`, waiting up to
   // `seconds` for it; 0 when none appears.
   unsigned long find_window(const std::string& prefix, double seconds);
-  // Presses and releases the key `keysym_name` ("p", "Escape", "r").
-  void tap_key(unsigned long window, const char* keysym_name);
-  // Resizes the window (there is no window manager to say otherwise).
-  void resize(unsigned long window, int width, int height);
-  // Moves to (x0, y0), presses the left button, moves to (x1, y1), releases.
-  void drag(unsigned long window, int x0, int y0, int x1, int y1);
+  // Presses and releases the key `keysym_name` ("p", "Escape", "r"); false
+  // when the server refused an event. The window may close on the press (Esc
+  // quits): a release that finds it gone is no error, as for a real keyboard.
+  bool tap_key(unsigned long window, const char* keysym_name);
+  // Resizes the window (there is no window manager to say otherwise); false
+  // when the server refused it.
+  bool resize(unsigned long window, int width, int height);
+  // Moves to (x0, y0), presses the left button, moves to (x1, y1), releases;
+  // false when the server refused an event.
+  bool drag(unsigned long window, int x0, int y0, int x1, int y1);
+  // The last X error the server reported, as text ("" when none).
+  const std::string& last_error() const { return last_error_; }
 
  private:
-  void send(unsigned long window, long mask, void* event);
+  // Sends and waits for the server's answer: the X error code, 0 for none.
+  int send(unsigned long window, long mask, void* event);
+  int sync_for_error();
   Display* display_ = nullptr;
+  std::string last_error_;
   unsigned long time_ = 1000;  // event timestamps: non-zero and increasing
 };
 
