@@ -139,8 +139,8 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
   glm::dvec3 point = load(s.point);
   glm::dvec3 normal = load(s.normal);
   if (object.has_rotation) {
-    point = object.rotation * point;
-    normal = object.rotation * normal;
+    point = rotate(object.rotation, point);
+    normal = rotate(object.rotation, normal);
   }
   SurfacePoint out;
   out.t = t;

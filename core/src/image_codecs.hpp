@@ -62,6 +62,17 @@ void read_exr(const std::filesystem::path& file, int max_channels, const RowSink
 // checked). PNG: UInt8 or UInt16, values round(v * max) of v clamped to [0, 1],
 // fastest zlib level. EXR: Half or Float, zip compression, the image's channel names.
 void write_png(int fd, const ImageFile& image, PixelFormat storage);
+// PNG from rows the caller quantises: `row(y, samples)` fills row y's
+// width * channels samples as the file stores them (8-bit codes, or 16-bit
+// big-endian), called in parallel for different rows. A rendering writes its
+// sRGB codes straight from its linear floats this way, without a float copy
+// of the image quantised a second time.
+struct PngRows {
+  int width = 0, height = 0, channels = 0;
+  bool sixteen = false;
+  std::function<void(int y, unsigned char* samples)> row;
+};
+void write_png(int fd, const PngRows& rows);
 void write_exr(int fd, const ImageFile& image, PixelFormat storage);
 // JPEG (1 or 3 channels): the values' 8-bit codes, as PNG stores them, at
 // libjpeg's `quality` (1 to 100).

@@ -202,34 +202,44 @@ void write_to_fd(png_structp png, png_bytep data, size_t length) {
 
 void flush_nothing(png_structp) {}
 
-// The image as PNG's compressed data holds it: each row quantised to the
-// stored depth (big-endian), after a filter-type byte, and filtered with
-// "sub" (each byte less the byte one pixel to its left). Rows in parallel.
-std::vector<png_byte> filtered_rows(const ImageFile& image, bool sixteen) {
-  const size_t values = size_t(image.width) * size_t(image.channels);
-  const size_t sample_bytes = sixteen ? 2 : 1, pixel_bytes = size_t(image.channels) * sample_bytes;
-  const size_t row_bytes = 1 + values * sample_bytes;
-  std::vector<png_byte> out(row_bytes * size_t(image.height));
-  const double max = sixteen ? 65535.0 : 255.0;
-  tbb::parallel_for(tbb::blocked_range<int>(0, image.height), [&](const tbb::blocked_range<int>& rows) {
-    std::vector<png_byte> raw(values * sample_bytes);
-    for (int y = rows.begin(); y != rows.end(); ++y) {
-      const float* in = image.pixels.data() + size_t(y) * values;
-      for (size_t i = 0; i < values; ++i) {
-        const long code = std::lround(std::clamp(double(in[i]), 0.0, 1.0) * max);
-        if (sixteen) {
-          raw[2 * i] = png_byte(code >> 8);
-          raw[2 * i + 1] = png_byte(code & 0xff);
-        } else {
-          raw[i] = png_byte(code);
-        }
-      }
+// The image as PNG's compressed data holds it: each row as `rows.row` fills
+// it, after a filter-type byte, filtered with "sub" (each byte less the byte
+// one pixel to its left). Rows in parallel.
+std::vector<png_byte> filtered_rows(const PngRows& rows) {
+  const size_t sample_bytes = rows.sixteen ? 2 : 1, pixel_bytes = size_t(rows.channels) * sample_bytes;
+  const size_t raw_bytes = size_t(rows.width) * pixel_bytes, row_bytes = 1 + raw_bytes;
+  std::vector<png_byte> out(row_bytes * size_t(rows.height));
+  tbb::parallel_for(tbb::blocked_range<int>(0, rows.height), [&](const tbb::blocked_range<int>& range) {
+    std::vector<png_byte> raw(raw_bytes);
+    for (int y = range.begin(); y != range.end(); ++y) {
+      rows.row(y, raw.data());
       png_byte* row = out.data() + size_t(y) * row_bytes;
       row[0] = PNG_FILTER_VALUE_SUB;
-      for (size_t i = 0; i < raw.size(); ++i) row[1 + i] = png_byte(raw[i] - (i >= pixel_bytes ? raw[i - pixel_bytes] : 0));
+      std::copy_n(raw.data(), std::min(pixel_bytes, raw_bytes), row + 1);
+      for (size_t i = pixel_bytes; i < raw_bytes; ++i) row[1 + i] = png_byte(raw[i] - raw[i - pixel_bytes]);
     }
   });
   return out;
+}
+
+// `image`'s rows quantised to the stored depth: round(v * max) of v clamped to [0, 1].
+PngRows quantised_rows(const ImageFile& image, bool sixteen) {
+  PngRows rows{image.width, image.height, image.channels, sixteen, {}};
+  const size_t values = size_t(image.width) * size_t(image.channels);
+  rows.row = [&image, values, sixteen](int y, unsigned char* samples) {
+    const double max = sixteen ? 65535.0 : 255.0;
+    const float* in = image.pixels.data() + size_t(y) * values;
+    for (size_t i = 0; i < values; ++i) {
+      const long code = std::lround(std::clamp(double(in[i]), 0.0, 1.0) * max);
+      if (sixteen) {
+        samples[2 * i] = png_byte(code >> 8);
+        samples[2 * i + 1] = png_byte(code & 0xff);
+      } else {
+        samples[i] = png_byte(code);
+      }
+    }
+  };
+  return rows;
 }
 
 // zlib level 2 with the "sub" filter: several times faster than libpng's
@@ -286,14 +296,13 @@ std::vector<png_byte> zlib_stream(const std::vector<png_byte>& data) {
   return out;
 }
 
-bool write_png_chunks(png_structp png, png_infop info, const ImageFile& image, bool sixteen,
-                      const std::vector<png_byte>& compressed) {
+bool write_png_chunks(png_structp png, png_infop info, const PngRows& rows, const std::vector<png_byte>& compressed) {
   if (setjmp(png_jmpbuf(png))) return false;
   static const int kColorTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                     PNG_COLOR_TYPE_RGB_ALPHA};
   png_set_write_fn(png, png_get_error_ptr(png), write_to_fd, flush_nothing);
-  png_set_IHDR(png, info, png_uint_32(image.width), png_uint_32(image.height), sixteen ? 16 : 8,
-               kColorTypes[image.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
+  png_set_IHDR(png, info, png_uint_32(rows.width), png_uint_32(rows.height), rows.sixteen ? 16 : 8,
+               kColorTypes[rows.channels - 1], PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_BASE, PNG_FILTER_TYPE_BASE);
   png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_write_info(png, info);
   // The compressed rows as IDAT chunks (libpng compresses on one thread
@@ -321,11 +330,14 @@ void read_png(const std::filesystem::path& file, int max_channels, const RowSink
 }
 
 void write_png(int fd, const ImageFile& image, PixelFormat storage) {
-  if (image.channels < 1 || image.channels > 4) throw CodecError("PNG holds 1 to 4 channels, not " + std::to_string(image.channels));
   if (storage != PixelFormat::UInt8 && storage != PixelFormat::UInt16) throw CodecError("PNG stores 8- or 16-bit integers only");
-  const bool sixteen = storage == PixelFormat::UInt16;
+  write_png(fd, quantised_rows(image, storage == PixelFormat::UInt16));
+}
+
+void write_png(int fd, const PngRows& rows) {
+  if (rows.channels < 1 || rows.channels > 4) throw CodecError("PNG holds 1 to 4 channels, not " + std::to_string(rows.channels));
   // Made before libpng's structures, and outside its jump points.
-  const std::vector<png_byte> compressed = zlib_stream(filtered_rows(image, sixteen));
+  const std::vector<png_byte> compressed = zlib_stream(filtered_rows(rows));
   PngContext context;
   context.fd = fd;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &context, on_png_error, on_png_warning);
@@ -334,7 +346,7 @@ void write_png(int fd, const ImageFile& image, PixelFormat storage) {
     png_destroy_write_struct(&png, nullptr);
     throw CodecError("out of memory");
   }
-  const bool written = write_png_chunks(png, info, image, sixteen, compressed);
+  const bool written = write_png_chunks(png, info, rows, compressed);
   png_destroy_write_struct(&png, &info);
   if (!written) throw CodecError(context.message);
 }

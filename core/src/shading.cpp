@@ -87,7 +87,7 @@ int32_t Shader::left_behind(const Surface& s) const {
 Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
   const Object& object = scene_.objects[size_t(hit.id)];
   const Material& material = scene_.materials[size_t(object.material)];
-  SurfacePoint sp = surface_of(object, ray, hit.prim, query_.entry(), material.texture >= 0);
+  SurfacePoint sp = surface_of(object, ray, hit.prim, entry_, material.texture >= 0);
   Surface s;
   s.position = sp.position;
   s.outward = sp.normal;
@@ -134,7 +134,7 @@ bool Shader::shadowed(size_t light, const Ray& ray, double distance, int32_t sel
   KnownClear clear{self, kMissId};
   int32_t& last = last_blocker_[light];
   if (last != kMissId && last != self) {
-    if (blocks(scene_.objects[size_t(last)], ray, distance, query_.entry())) return true;
+    if (blocks(scene_.objects[size_t(last)], ray, distance, entry_)) return true;
     clear.tested = last;
   }
   const int32_t blocker = query_.light_occluder(light, ray, distance, clear);

@@ -53,6 +53,7 @@ class Shader {
         query_(query),
         counts_(counts),
         profile_(profile),
+        entry_(query.entry()),
         sphere_lights_(lights_with_spheres(scene)),
         last_blocker_(scene.lights.size(), kMissId) {}
   SampleResult trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
@@ -78,6 +79,7 @@ class Shader {
   const ObjectQuery& query_;
   RayCounts& counts_;
   PhaseProfile* profile_;
+  IntersectEntry entry_;  // query_.entry(), read once rather than by a virtual call per hit and shadow ray
   bool hashing_ = false;
   uint32_t hash_ = 0;
   std::vector<uint32_t> sphere_lights_;  // the lights whose sphere rays can meet

@@ -38,6 +38,19 @@ struct SurfacePoint {
   glm::dvec2 uv{0};
 };
 
+// R v and R^T v with glm's operations in glm's order (glm::dmat3 * dvec3,
+// and that of glm::transpose(R)), so every bit is the same, written out:
+// the compiler left glm's product out of line in the hot loops, and built
+// the transposed copy for every ray and object.
+inline glm::dvec3 rotate(const glm::dmat3& r, const glm::dvec3& v) {
+  return {r[0][0] * v.x + r[1][0] * v.y + r[2][0] * v.z, r[0][1] * v.x + r[1][1] * v.y + r[2][1] * v.z,
+          r[0][2] * v.x + r[1][2] * v.y + r[2][2] * v.z};
+}
+inline glm::dvec3 rotate_back(const glm::dmat3& r, const glm::dvec3& v) {
+  return {r[0][0] * v.x + r[0][1] * v.y + r[0][2] * v.z, r[1][0] * v.x + r[1][1] * v.y + r[1][2] * v.z,
+          r[2][0] * v.x + r[2][1] * v.y + r[2][2] * v.z};
+}
+
 // Ray in the object's local frame (t is preserved: rotations are orthonormal).
 // Inline, with intersect_object: every candidate object of every ray passes here.
 inline PrismRay to_local(const Object& object, const Ray& ray) {
@@ -45,9 +58,8 @@ inline PrismRay to_local(const Object& object, const Ray& ray) {
   glm::dvec3 dir = ray.dir;
   if (object.has_rotation) {
     // R is orthonormal: its inverse is its transpose, and t is unchanged.
-    const glm::dmat3 inverse = glm::transpose(object.rotation);
-    origin = inverse * origin;
-    dir = inverse * dir;
+    origin = rotate_back(object.rotation, origin);
+    dir = rotate_back(object.rotation, dir);
   }
   return PrismRay{{origin.x, origin.y, origin.z}, {dir.x, dir.y, dir.z}};
 }

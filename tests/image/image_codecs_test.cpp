@@ -297,7 +297,8 @@ TEST_F(ImageCodecs, ExrReadsAsOpenImageIOReadsIt) {
 
 // linear_to_srgb8's table lookup against the formula it stands for, at
 // every float within 2000 ulps of each code's threshold (where a table could
-// be off by one) and at 200,000 spread over [0, 1]; plus values worked out
+// be off by one), at 200,000 spread over [0, 1] and at both ends of every
+// run of 2^16 floats; plus values worked out
 // by hand: 255 * (1.055 * 0.18^(1/2.4) - 0.055) = 117.65, 255 * 12.92 * 0.001 = 3.29.
 TEST(Srgb8Codes, EqualTheFormulaEverywhereTheCodeChanges) {
   auto formula = [](float v) { return int(std::lround(255.0 * prism::linear_to_srgb(std::clamp(double(v), 0.0, 1.0)))); };
@@ -324,6 +325,12 @@ TEST(Srgb8Codes, EqualTheFormulaEverywhereTheCodeChanges) {
   for (int i = 0; i <= 200000; ++i) {
     const float v = float(i) / 200000.0f;
     mismatches += prism::linear_to_srgb8(v) != formula(v);
+  }
+  // The first and last float of every run of 2^16 bit patterns below 1 (a
+  // table kept by the top bits of a float is wrong at a run's ends first).
+  for (uint32_t run = 0; run < (std::bit_cast<uint32_t>(1.0f) >> 16); ++run) {
+    for (const uint32_t bits : {run << 16, (run << 16) | 0xffffu})
+      mismatches += prism::linear_to_srgb8(std::bit_cast<float>(bits)) != formula(std::bit_cast<float>(bits));
   }
   EXPECT_EQ(mismatches, 0);
 }

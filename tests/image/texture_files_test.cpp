@@ -72,6 +72,23 @@ TEST_F(TextureFiles, AFileUnderSeveralNamesCountsOnce) {
   EXPECT_EQ(textures[2].texels.size(), 16u);
 }
 
+// Files are decoded in parallel; of two that fail, the error is the one
+// the scene lists first, whichever decoding ends first (each try, so that a
+// message chosen by the threads' timing would show).
+TEST_F(TextureFiles, OfSeveralFailingFilesTheFirstInSceneOrderIsReported) {
+  const fs::path good = write_rgb("good.png", 64, 64), first = dir_ / "first.png", second = dir_ / "second.png";
+  test::write_file(first, test::png_claiming_size(4096, 4096));
+  test::write_file(second, test::png_claiming_size(4096, 4096));
+  const std::vector<TextureRequest> requests = {{"good", good, true, "textures.good"},
+                                                {"first", first, true, "textures.first"},
+                                                {"second", second, true, "textures.second"}};
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    EXPECT_EQ(error_of([&] { load_textures(requests, limits::kMaxTexturePixels); }),
+              "textures.first: cannot read image '" + first.string() +
+                  "': cannot decode: the file's 69 bytes cannot hold 4096x4096 pixels (truncated, or a false header)");
+  }
+}
+
 TEST_F(TextureFiles, DistinctFilesShareTheBudget) {
   const fs::path a = write_rgb("a.png", 4, 4), b = write_rgb("b.png", 4, 4);
   EXPECT_EQ(error_of([&] { load_textures({{"a", a, true, "textures.a"}, {"b", b, true, "textures.b"}}, 16); }),
