@@ -10,8 +10,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdio>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -165,13 +165,10 @@ int XClient::sync_for_error() {
   if (last_x_error.error_code == 0) return 0;
   char text[128] = "";
   XGetErrorText(display_, last_x_error.error_code, text, sizeof text);
-  last_error_ = std::string(text) + " (request " + std::to_string(int(last_x_error.request_code)) + ", resource 0x" +
-                [](unsigned long id) {
-                  char hex[32];
-                  std::snprintf(hex, sizeof hex, "%lx", id);
-                  return std::string(hex);
-                }(last_x_error.resourceid) +
-                ")";
+  char where[64];
+  std::snprintf(where, sizeof where, " (request %d, resource 0x%lx)", int(last_x_error.request_code),
+                last_x_error.resourceid);
+  last_error_ = std::string(text) + where;
   return last_x_error.error_code;
 }
 
