@@ -84,7 +84,7 @@ Image blank_image(const RenderSettings& settings) {
   image.width = r.width;
   image.height = r.height;
   const size_t n = size_t(image.width) * image.height;
-  image.rgb.assign(n * 3, 0.0f);
+  assign_channel(image.rgb, n * 3, 0.0f);
   assign_aovs(image, settings);
   return image;
 }

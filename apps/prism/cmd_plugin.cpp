@@ -212,6 +212,22 @@ bool check_backend(const BackendPlugin& plugin, const std::string& name, Precisi
 // stability suite's float caps (misclassified <= 1 %, t p99 <= 1e-4:
 // tests/stability/measure.hpp); on the rays from inside and the grazing
 // rays, whose side of the surface is arbitrary to a rounding, reported.
+// The bounding sphere's line of the self-test; false when it fails.
+bool print_sphere_check(const Object& object, std::span<const TraceQuery> rays) {
+  const char* whose = object.desc->bounding_sphere ? "the plugin's, or the box's if smaller" : "around the box";
+  try {
+    const PacketCheck sphere = check_bounding_sphere(object, rays);
+    const bool pass = sphere.mismatches == 0;
+    std::printf("  bounding sphere (%s): %s on %d hits%s%s\n", whose,
+                pass ? "holds every hit point" : "FAIL: misses a hit point", sphere.rays, pass ? "" : ": ",
+                sphere.first.c_str());
+    return pass;
+  } catch (const RuntimeError& e) {  // a sphere that is not finite, or of negative radius
+    std::printf("  bounding sphere (%s): FAIL: %s\n", whose, e.what());
+    return false;
+  }
+}
+
 bool print_float_check(const FloatCheck& f) {
   if (!f.has_float) {
     std::printf("  float entry: the double intersector stands in (no float instantiation: a plugin written in the "
@@ -292,6 +308,10 @@ int run_plugin_check(const PluginCheckArgs& args) {
               surfaces.mismatches == 0 ? "the same t, point and normal bit for bit" : "FAIL: differs", surfaces.rays,
               surfaces.mismatches == 0 ? "" : ": ", surfaces.first.c_str());
   all_pass = surfaces.mismatches == 0 && all_pass;
+  if (scene.objects[0].bounded)
+    all_pass = print_sphere_check(scene.objects[0], rays) && all_pass;
+  else
+    std::printf("  bounding sphere: none (unbounded)\n");
 
   std::vector<std::string> names = args.backends;
   if (names.empty()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <random>
 #include <vector>
@@ -114,6 +115,32 @@ PacketCheck check_surface_without_uv(const Object& object, std::span<const Trace
                       std::memcmp(&all.position, &no_uv.position, sizeof all.position) == 0 &&
                       std::memcmp(&all.normal, &no_uv.normal, sizeof all.normal) == 0;
     if (!same && out.mismatches++ == 0) out.first = describe("surface without uv", ray, 0.0, kInfinity);
+  }
+  return out;
+}
+
+PacketCheck check_bounding_sphere(const Object& object, std::span<const TraceQuery> given) {
+  PacketCheck out;
+  const WorldSphere sphere = world_bounding_sphere(object);
+  for (const Ray& ray : rays_with_stiff_cases(object, given)) {
+    PrismHit hit;
+    if (!intersect_object(object, ray, 0.0, kInfinity, hit)) continue;
+    ++out.rays;
+    // The plugin's own point for its hit (not the core's polish of an
+    // ill-conditioned one, which may slide along a ray that runs in the surface).
+    const PrismRay local = to_local(object, ray);
+    PrismHit found = hit;
+    found.flags = PRISM_HIT_SKIP_UV;
+    PrismSurface s{};
+    object.desc->surface(object.record(), &local, &found, &s);
+    const glm::dvec3 point{s.point[0], s.point[1], s.point[2]};
+    const glm::dvec3 position = object.center + (object.has_rotation ? rotate(object.rotation, point) : point);
+    const double distance = glm::length(position - sphere.center);
+    if (!(distance <= sphere.radius * (1 + 1e-9)) && out.mismatches++ == 0) {
+      char text[160];
+      std::snprintf(text, sizeof text, "a hit point %.17g from the centre, radius %.17g, ", distance, sphere.radius);
+      out.first = text + describe("ray", ray, 0.0, kInfinity);
+    }
   }
   return out;
 }

@@ -27,6 +27,11 @@ PacketCheck check_packet_entries(const Object& object, std::span<const TraceQuer
 // (`rays` counts the hits).
 PacketCheck check_surface_without_uv(const Object& object, std::span<const TraceQuery> rays);
 
+// world_bounding_sphere (the plugin's bounding_sphere, or the sphere around
+// its box) against the points `surface` gives on the hits of the same rays:
+// each within the radius, up to a relative 1e-9 (`rays` counts the hits).
+PacketCheck check_bounding_sphere(const Object& object, std::span<const TraceQuery> rays);
+
 // The float entry against the double one, the double answer taken as the
 // truth: on the random rays (`given`), and on the rays from inside and the
 // grazing rays check_packet_entries adds. A grazing ray skims the surface

@@ -5,11 +5,14 @@
 // cell is the set of directions through one square of a cube face; its cone
 // (axis a, half-angle h) holds them all: h is the largest angle from a to
 // the square's corners (the angle to a fixed axis is quasi-convex on the
-// face plane, so its maximum over a square is at a corner). A direction v
-// that meets the sphere lies in both cones, so the angle between the axes
-// is at most h + asin(r / d): the test below, made in cosines (well
-// conditioned, since h >= 0.01 rad) with a margin of 1e-12 that also covers
-// a direction put into the cell next to its own by rounding. A sphere that
+// face plane, so its maximum over a square is at a corner), and cos h the
+// smallest cosine a . c over the unit corner directions c, sin h from it.
+// A direction v that meets the sphere lies in both cones, so the angle
+// between the axes is at most h + asin(r / d): the test below, made in
+// cosines (well conditioned, since h >= 0.01 rad) with a margin of 1e-12
+// that covers the rounding of those cosines and sines (a few ulps of a
+// unit dot product, over sin h >= 0.01 for the sine: ~1e-14) and a
+// direction put into the cell next to its own by rounding. A sphere that
 // holds the apex is listed in every cell.
 //
 // Reach. A ray that passes within `reach` of X, say at Y, with direction v,
@@ -50,10 +53,6 @@ constexpr double kPointBudget = 2e5;
 constexpr double kGridBudget = 2e5;
 
 double max_abs(const glm::dvec3& v) { return std::max(std::max(std::abs(v.x), std::abs(v.y)), std::abs(v.z)); }
-
-double angle_between(const glm::dvec3& a, const glm::dvec3& b) {
-  return std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b));
-}
 
 int resolution_for(double budget, double per_cell, size_t objects, int lo, int hi) {
   const double cells = budget / (per_cell * double(std::max<size_t>(objects, 1)));
@@ -99,26 +98,37 @@ Cone cell_cone(int face, int i, int j, int resolution) {
   const double step = 2.0 / resolution;
   const double u0 = -1 + step * i, u1 = u0 + step, v0 = -1 + step * j, v1 = v0 + step;
   const glm::dvec3 axis = face_direction(f, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
-  double half = 0;
+  double cos_half = 1;
   for (double u : {u0, u1})
-    for (double v : {v0, v1}) half = std::max(half, angle_between(axis, face_direction(f, u, v)));
-  return {axis, std::cos(half), std::sin(half)};
+    for (double v : {v0, v1}) cos_half = std::min(cos_half, glm::dot(axis, face_direction(f, u, v)));
+  return {axis, cos_half, std::sqrt(std::max(0.0, (1 - cos_half) * (1 + cos_half)))};
 }
 
 // The cones of every cell of a cube map, face by face, row by row.
+std::vector<Cone> make_cell_cones(int resolution) {
+  std::vector<Cone> cones;
+  cones.reserve(size_t(6 * resolution * resolution));
+  for (int face = 0; face < 6; ++face)
+    for (int j = 0; j < resolution; ++j)
+      for (int i = 0; i < resolution; ++i) cones.push_back(cell_cone(face, i, j, resolution));
+  return cones;
+}
+
+// Made once per process, and only for the resolutions a scene uses.
+template <int kResolution>
+const std::vector<Cone>& cell_cones_at() {
+  static const std::vector<Cone> cones = make_cell_cones(kResolution);
+  return cones;
+}
+
 const std::vector<Cone>& cell_cones(int resolution) {
-  static const auto tables = [] {
-    std::vector<std::vector<Cone>> all;
-    for (int r = kMinCubeResolution; r <= kMaxCubeResolution; r *= 2) {
-      std::vector<Cone> cones;
-      for (int face = 0; face < 6; ++face)
-        for (int j = 0; j < r; ++j)
-          for (int i = 0; i < r; ++i) cones.push_back(cell_cone(face, i, j, r));
-      all.push_back(std::move(cones));
-    }
-    return all;
-  }();
-  return tables[size_t(std::countr_zero(unsigned(resolution)) - std::countr_zero(unsigned(kMinCubeResolution)))];
+  static_assert(kMinCubeResolution == 4 && kMaxCubeResolution == 32, "one case per resolution");
+  switch (resolution) {
+    case 4: return cell_cones_at<4>();
+    case 8: return cell_cones_at<8>();
+    case 16: return cell_cones_at<16>();
+    default: return cell_cones_at<32>();
+  }
 }
 
 // A sphere's cone seen from `apex`, the sphere grown by `reach`.
@@ -141,13 +151,6 @@ bool cones_meet(const Cone& cell, const Cone& object) {
 }
 
 }  // namespace
-
-BoundSphere sphere_around(const glm::dvec3& lo, const glm::dvec3& hi, int32_t id) {
-  const glm::dvec3 center = 0.5 * (lo + hi);
-  // Rounding of the centre and the length: far below the relative 1e-12 and the absolute term.
-  const double radius = 0.5 * glm::length(hi - lo) * (1 + 1e-12) + 1e-15 * max_abs(center);
-  return {center, radius, id};
-}
 
 CellLists::CellLists(const std::vector<std::vector<int32_t>>& cells) {
   for (const auto& cell : cells) {

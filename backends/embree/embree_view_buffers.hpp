@@ -25,8 +25,6 @@ struct BoundSphere {
   int32_t id = 0;
 };
 
-// The sphere around a box (lo <= hi), rounded outward.
-BoundSphere sphere_around(const glm::dvec3& lo, const glm::dvec3& hi, int32_t id);
 
 // Object ids per cell, each cell's ascending, in one array.
 class CellLists {

@@ -1,5 +1,9 @@
 #include "prism/backend.hpp"
 
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <cstdint>
 #include <string>
 
 #include "prism/errors.hpp"
@@ -29,6 +33,21 @@ void Backend::set_precision(Precision precision) {
     throw InputError(
         "this backend computes in double only; --precision float is for a backend with a float path "
         "(the reference backend runs each plugin's float instantiation, the GPU backends its float GLSL)");
+}
+
+void assign_channel(std::vector<float>& channel, size_t n, float value) {
+  constexpr size_t kPopulateFrom = size_t(1) << 20;  // bytes; below this the call costs more than it saves
+  if (n > channel.capacity() && n * sizeof(float) >= kPopulateFrom) {
+    std::vector<float>().swap(channel);  // the old values need no copy
+    channel.reserve(n);
+#ifdef MADV_POPULATE_WRITE
+    const uintptr_t page = uintptr_t(sysconf(_SC_PAGESIZE));
+    const uintptr_t begin = (uintptr_t(channel.data()) + page - 1) & ~(page - 1);
+    const uintptr_t end = uintptr_t(channel.data() + n) & ~(page - 1);
+    if (end > begin) (void)madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);  // a hint only
+#endif
+  }
+  channel.assign(n, value);
 }
 
 void check_region(const RenderSettings& settings) {

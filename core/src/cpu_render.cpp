@@ -91,7 +91,7 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   image.width = rect.width;
   image.height = rect.height;
   const size_t pixels = size_t(rect.width) * size_t(rect.height);
-  image.rgb.assign(pixels * 3, 0.0f);
+  assign_channel(image.rgb, pixels * 3, 0.0f);
   assign_aovs(image, settings);
   const CameraRays camera_rays(settings.camera ? *settings.camera : scene.camera, s.width, s.height);
   Frame frame{scene, query, settings, camera_rays, rect, image};

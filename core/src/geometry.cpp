@@ -152,6 +152,29 @@ SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hi
   return out;
 }
 
+WorldSphere world_bounding_sphere(const Object& object) {
+  double lo[3], hi[3];
+  object.desc->bounds(object.record(), lo, hi);
+  glm::dvec3 local_center = 0.5 * (load(lo) + load(hi));
+  double radius = 0.5 * glm::length(load(hi) - load(lo));
+  double center[3], own_radius = 0;
+  if (object.desc->bounding_sphere && object.desc->bounding_sphere(object.record(), center, &own_radius)) {
+    if (!finite3(center) || !std::isfinite(own_radius) || own_radius < 0) {
+      char text[160];
+      std::snprintf(text, sizeof text, "returned a bounding sphere of centre (%g, %g, %g) and radius %g", center[0],
+                    center[1], center[2], own_radius);
+      throw RuntimeError(fault_message(object, text));
+    }
+    if (own_radius < radius) {
+      local_center = load(center);
+      radius = own_radius;
+    }
+  }
+  const glm::dvec3 world_center = object.center + (object.has_rotation ? rotate(object.rotation, local_center) : local_center);
+  const double rounding = 1e-15 * (max_abs(world_center) + max_abs(local_center) + max_abs(object.center));
+  return {world_center, radius * (1 + 1e-12) + rounding};
+}
+
 std::vector<uint32_t> lights_with_spheres(const Scene& scene) {
   std::vector<uint32_t> lights;
   for (size_t k = 0; k < scene.lights.size(); ++k)

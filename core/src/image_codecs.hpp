@@ -43,6 +43,8 @@ class Unsupported : public std::runtime_error {
 struct RowSink {
   std::function<void(const ImageFile& header)> header;
   std::function<void(int y, const float* values)> row;
+  // Optional (PNG only): 8-bit rows as codes instead of `row` (ImageRowSink::codes8).
+  std::function<void(int y, const unsigned char* codes)> codes8 = {};
 };
 
 // Headers only; CodecError / Unsupported. OpenEXR's libraries cost a

@@ -85,7 +85,7 @@ void read_image_rows(const std::filesystem::path& file, size_t max_pixels, int m
   require_regular_file(file);
   const codec::Format format = format_of(file);
   if (format != codec::Format::Other) {
-    const codec::RowSink checked{[&](const ImageFile& header) {
+    codec::RowSink checked{[&](const ImageFile& header) {
                                    const std::string error = pixel_limit_error(header, max_pixels);
                                    if (!error.empty()) throw codec::CodecError(error);
                                    sink.header(header);
@@ -93,7 +93,14 @@ void read_image_rows(const std::filesystem::path& file, size_t max_pixels, int m
                                  [&](int y, const float* values) {
                                    throw_if_cancelled();
                                    sink.row(y, values);
-                                 }};
+                                 },
+                                 {}};
+    if (sink.codes8) {
+      checked.codes8 = [&](int y, const unsigned char* codes) {
+        throw_if_cancelled();
+        sink.codes8(y, codes);
+      };
+    }
     try {
       return read_rows_natively(format, file, max_channels, checked);
     } catch (const codec::CodecError& e) {

@@ -2,7 +2,7 @@
 // callback: every function below that calls into libpng sets its jump point
 // first and keeps no C++ object alive across the libpng calls it makes.
 #include <png.h>
-#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <zlib.h>
 
@@ -12,6 +12,7 @@
 #include <csetjmp>
 #include <cstdio>
 #include <cstring>
+#include <memory>
 #include <vector>
 
 #include "image_codecs.hpp"
@@ -89,10 +90,15 @@ class PngReader {
     sink.header(shape);
     std::vector<float> values(size_t(header_.width) * size_t(channels));
     if (passes_ > 1) return read_interlaced(channels, values, sink);
+    const bool as_codes = sink.codes8 && depth_ == 8 && channels == header_.channels;
     std::vector<png_byte> row(row_bytes_);
     for (int y = 0; y < header_.height; ++y) {
       throw_if_cancelled();
       if (!read_row(row.data())) throw CodecError(std::string("cannot decode: ") + context_.message);
+      if (as_codes) {
+        sink.codes8(y, row.data());
+        continue;
+      }
       convert(row.data(), channels, values.data());
       sink.row(y, values.data());
     }
@@ -182,7 +188,7 @@ class PngReader {
         for (int c = 0; c < channels; ++c) out[x * size_t(channels) + size_t(c)] = float(codes[x * stride + size_t(c)]) * (1.0f / 65535.0f);
     } else {
       for (size_t x = 0; x < width; ++x)
-        for (int c = 0; c < channels; ++c) out[x * size_t(channels) + size_t(c)] = float(row[x * stride + size_t(c)]) * (1.0f / 255.0f);
+        for (int c = 0; c < channels; ++c) out[x * size_t(channels) + size_t(c)] = code8_value(row[x * stride + size_t(c)]);
     }
   }
 
@@ -201,26 +207,6 @@ void write_to_fd(png_structp png, png_bytep data, size_t length) {
 }
 
 void flush_nothing(png_structp) {}
-
-// The image as PNG's compressed data holds it: each row as `rows.row` fills
-// it, after a filter-type byte, filtered with "sub" (each byte less the byte
-// one pixel to its left). Rows in parallel.
-std::vector<png_byte> filtered_rows(const PngRows& rows) {
-  const size_t sample_bytes = rows.sixteen ? 2 : 1, pixel_bytes = size_t(rows.channels) * sample_bytes;
-  const size_t raw_bytes = size_t(rows.width) * pixel_bytes, row_bytes = 1 + raw_bytes;
-  std::vector<png_byte> out(row_bytes * size_t(rows.height));
-  tbb::parallel_for(tbb::blocked_range<int>(0, rows.height), [&](const tbb::blocked_range<int>& range) {
-    std::vector<png_byte> raw(raw_bytes);
-    for (int y = range.begin(); y != range.end(); ++y) {
-      rows.row(y, raw.data());
-      png_byte* row = out.data() + size_t(y) * row_bytes;
-      row[0] = PNG_FILTER_VALUE_SUB;
-      std::copy_n(raw.data(), std::min(pixel_bytes, raw_bytes), row + 1);
-      for (size_t i = pixel_bytes; i < raw_bytes; ++i) row[1 + i] = png_byte(raw[i] - raw[i - pixel_bytes]);
-    }
-  });
-  return out;
-}
 
 // `image`'s rows quantised to the stored depth: round(v * max) of v clamped to [0, 1].
 PngRows quantised_rows(const ImageFile& image, bool sixteen) {
@@ -246,57 +232,113 @@ PngRows quantised_rows(const ImageFile& image, bool sixteen) {
 // default (level 6, every filter tried per row) for ~40 % larger files;
 // level 1 was no faster and 2 % larger.
 constexpr int kZlibLevel = 2;
-// Bands of the filtered rows deflated independently, in parallel: a fixed
-// size, so the file does not depend on the thread count. A band loses the
-// matches that reach back into the one before it: nothing measurable (the
-// showcase at 1280x720: 515,371 bytes, against 515,881 from libpng's own
-// deflate at the same level).
+// The rows are filtered and deflated in bands of whole rows, each about this
+// many bytes of filtered data, in parallel: each band independently, so the
+// file does not depend on the thread count. A band loses the matches that
+// reach back into the one before it: nothing measurable (the showcase at
+// 1280x720: 515,235 bytes, against 515,881 from libpng's own deflate at the
+// same level). A band's filtered rows live only in its worker's buffer,
+// never in one buffer of the whole image: at 1280x720 that buffer and
+// zero-filled room for each band's output were ~1,300 fresh pages to fault
+// in, ~1.5 ms of a whole `prism render` to PNG.
 constexpr size_t kBandBytes = size_t(1) << 18;
 
-// One band as raw deflate data: ended by a full flush (byte-aligned, no
-// final block) so that the next band's data may follow it, or finished.
-std::vector<png_byte> deflate_band(const png_byte* data, size_t size, bool last) {
-  z_stream z{};
-  if (deflateInit2(&z, kZlibLevel, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-    throw CodecError("zlib: cannot start compressing");
-  std::vector<png_byte> out(deflateBound(&z, uLong(size)) + 16);
-  z.next_in = const_cast<png_byte*>(data);
-  z.avail_in = uInt(size);
-  z.next_out = out.data();
-  z.avail_out = uInt(out.size());
-  const int result = deflate(&z, last ? Z_FINISH : Z_FULL_FLUSH);
-  // A flush is whole when input is used up and output room is left over.
-  const bool done = last ? result == Z_STREAM_END : result == Z_OK && z.avail_in == 0 && z.avail_out > 0;
-  out.resize(z.total_out);
-  deflateEnd(&z);
-  if (!done) throw CodecError("zlib: compressing failed");
-  return out;
-}
-
-// `data` as one zlib stream (RFC 1950): header, the bands' deflate data in
-// order, and the Adler-32 of the whole, combined from the bands' own.
-std::vector<png_byte> zlib_stream(const std::vector<png_byte>& data) {
-  const size_t bands = std::max<size_t>(1, (data.size() + kBandBytes - 1) / kBandBytes);
-  std::vector<std::vector<png_byte>> deflated(bands);
-  std::vector<uLong> sums(bands);
-  tbb::parallel_for(size_t(0), bands, [&](size_t b) {
-    const size_t begin = b * kBandBytes, size = std::min(kBandBytes, data.size() - begin);
-    deflated[b] = deflate_band(data.data() + begin, size, b + 1 == bands);
-    sums[b] = adler32(adler32(0, nullptr, 0), data.data() + begin, uInt(size));
-  });
-  // CMF: deflate, 32 KiB window; FLG: level 2-5's "fast" and the check bits (RFC 1950).
-  const unsigned cmf = 0x78, flags = 1u << 6;
-  std::vector<png_byte> out = {png_byte(cmf), png_byte(flags + 31 - (cmf * 256 + flags) % 31)};
-  uLong sum = sums[0];
-  for (size_t b = 0; b < bands; ++b) {
-    out.insert(out.end(), deflated[b].begin(), deflated[b].end());
-    if (b > 0) sum = adler32_combine(sum, sums[b], z_off_t(std::min(kBandBytes, data.size() - b * kBandBytes)));
+// The image as PNG's compressed data holds it, band by band: each row as
+// `rows.row` fills it, after a filter-type byte, filtered with "sub" (each
+// byte less the byte one pixel to its left).
+class CompressedRows {
+ public:
+  explicit CompressedRows(const PngRows& rows) : rows_(rows) {
+    const size_t sample_bytes = rows.sixteen ? 2 : 1;
+    pixel_bytes_ = size_t(rows.channels) * sample_bytes;
+    raw_bytes_ = size_t(rows.width) * pixel_bytes_;
+    row_bytes_ = 1 + raw_bytes_;
+    rows_per_band_ = std::max<size_t>(1, kBandBytes / row_bytes_);
+    // At least one band, so that an image without rows is still a finished stream.
+    bands_.resize(std::max<size_t>(1, (size_t(rows.height) + rows_per_band_ - 1) / rows_per_band_));
+    tbb::enumerable_thread_specific<Scratch> scratch;
+    tbb::parallel_for(size_t(0), bands_.size(), [&](size_t b) { compress_band(b, scratch.local()); });
+    sum_ = bands_[0].adler;
+    for (size_t b = 1; b < bands_.size(); ++b) sum_ = adler32_combine(sum_, bands_[b].adler, z_off_t(bands_[b].filtered));
+    for (const Band& band : bands_) size_ += band.size;
   }
-  for (int shift = 24; shift >= 0; shift -= 8) out.push_back(png_byte(sum >> shift));
-  return out;
-}
 
-bool write_png_chunks(png_structp png, png_infop info, const PngRows& rows, const std::vector<png_byte>& compressed) {
+  // The zlib stream (RFC 1950): header, the bands' deflate data in order,
+  // and the Adler-32 of the whole, combined from the bands' own.
+  size_t size() const { return sizeof header_ + size_ + 4; }
+  template <typename Fn>  // fn(const png_byte* data, size_t size), piece by piece in order
+  void for_each_piece(Fn&& fn) const {
+    fn(header_, sizeof header_);
+    for (const Band& band : bands_) fn(band.data.get(), band.size);
+    const png_byte trailer[4] = {png_byte(sum_ >> 24), png_byte(sum_ >> 16), png_byte(sum_ >> 8), png_byte(sum_)};
+    fn(trailer, sizeof trailer);
+  }
+
+ private:
+  struct Band {
+    std::unique_ptr<png_byte[]> data;  // raw deflate data
+    size_t size = 0;
+    size_t filtered = 0;  // bytes of filtered rows it holds
+    uLong adler = 0;      // their Adler-32
+  };
+  struct Scratch {
+    std::vector<png_byte> raw, filtered;
+  };
+
+  void compress_band(size_t b, Scratch& scratch) {
+    const int y0 = int(b * rows_per_band_), y1 = int(std::min(size_t(rows_.height), (b + 1) * rows_per_band_));
+    scratch.raw.resize(raw_bytes_);
+    scratch.filtered.resize(size_t(y1 - y0) * row_bytes_);
+    for (int y = y0; y < y1; ++y) {
+      png_byte* row = scratch.filtered.data() + size_t(y - y0) * row_bytes_;
+      rows_.row(y, scratch.raw.data());
+      filter_sub(scratch.raw.data(), row);
+    }
+    Band& band = bands_[b];
+    band.filtered = scratch.filtered.size();
+    band.adler = adler32(adler32(0, nullptr, 0), scratch.filtered.data(), uInt(band.filtered));
+    deflate_band(scratch.filtered.data(), band.filtered, b + 1 == bands_.size(), band);
+  }
+
+  void filter_sub(const png_byte* raw, png_byte* row) const {
+    row[0] = PNG_FILTER_VALUE_SUB;
+    std::copy_n(raw, std::min(pixel_bytes_, raw_bytes_), row + 1);
+    for (size_t i = pixel_bytes_; i < raw_bytes_; ++i) row[1 + i] = png_byte(raw[i] - raw[i - pixel_bytes_]);
+  }
+
+  // One band as raw deflate data: ended by a full flush (byte-aligned, no
+  // final block) so that the next band's data may follow it, or finished.
+  // Its room is left unfilled: deflate touches only the pages it writes.
+  static void deflate_band(const png_byte* data, size_t size, bool last, Band& band) {
+    z_stream z{};
+    if (deflateInit2(&z, kZlibLevel, Z_DEFLATED, -MAX_WBITS, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+      throw CodecError("zlib: cannot start compressing");
+    const size_t room = deflateBound(&z, uLong(size)) + 16;
+    band.data = std::make_unique_for_overwrite<png_byte[]>(room);
+    z.next_in = const_cast<png_byte*>(data);
+    z.avail_in = uInt(size);
+    z.next_out = band.data.get();
+    z.avail_out = uInt(room);
+    const int result = deflate(&z, last ? Z_FINISH : Z_FULL_FLUSH);
+    // A flush is whole when input is used up and output room is left over.
+    const bool done = last ? result == Z_STREAM_END : result == Z_OK && z.avail_in == 0 && z.avail_out > 0;
+    band.size = z.total_out;
+    deflateEnd(&z);
+    if (!done) throw CodecError("zlib: compressing failed");
+  }
+
+  // CMF: deflate, 32 KiB window; FLG: level 2-5's "fast" and the check bits (RFC 1950).
+  static constexpr unsigned kCmf = 0x78, kFlags = 1u << 6;
+  static constexpr png_byte header_[2] = {png_byte(kCmf), png_byte(kFlags + 31 - (kCmf * 256 + kFlags) % 31)};
+
+  const PngRows& rows_;
+  size_t pixel_bytes_ = 0, raw_bytes_ = 0, row_bytes_ = 0, rows_per_band_ = 1;
+  std::vector<Band> bands_;
+  uLong sum_ = 0;
+  size_t size_ = 0;
+};
+
+bool write_png_chunks(png_structp png, png_infop info, const PngRows& rows, const CompressedRows& compressed) {
   if (setjmp(png_jmpbuf(png))) return false;
   static const int kColorTypes[] = {PNG_COLOR_TYPE_GRAY, PNG_COLOR_TYPE_GRAY_ALPHA, PNG_COLOR_TYPE_RGB,
                                     PNG_COLOR_TYPE_RGB_ALPHA};
@@ -307,10 +349,22 @@ bool write_png_chunks(png_structp png, png_infop info, const PngRows& rows, cons
   png_write_info(png, info);
   // The compressed rows as IDAT chunks (libpng compresses on one thread
   // only; it writes the chunks, with their CRCs, as they are).
+  // Chunks of up to kChunkBytes, each written from the pieces it spans.
   constexpr size_t kChunkBytes = size_t(1) << 20;
-  for (size_t at = 0; at < compressed.size(); at += kChunkBytes)
-    png_write_chunk(png, reinterpret_cast<png_const_bytep>("IDAT"), compressed.data() + at,
-                    std::min(kChunkBytes, compressed.size() - at));
+  const size_t total = compressed.size();
+  size_t written = 0, chunk_left = 0;
+  compressed.for_each_piece([&](const png_byte* data, size_t size) {
+    while (size > 0) {
+      if (chunk_left == 0) {
+        chunk_left = std::min(kChunkBytes, total - written);
+        png_write_chunk_start(png, reinterpret_cast<png_const_bytep>("IDAT"), png_uint_32(chunk_left));
+      }
+      const size_t part = std::min(size, chunk_left);
+      png_write_chunk_data(png, data, part);
+      data += part, size -= part, written += part, chunk_left -= part;
+      if (chunk_left == 0) png_write_chunk_end(png);
+    }
+  });
   png_write_chunk(png, reinterpret_cast<png_const_bytep>("IEND"), nullptr, 0);
   return true;
 }
@@ -337,7 +391,7 @@ void write_png(int fd, const ImageFile& image, PixelFormat storage) {
 void write_png(int fd, const PngRows& rows) {
   if (rows.channels < 1 || rows.channels > 4) throw CodecError("PNG holds 1 to 4 channels, not " + std::to_string(rows.channels));
   // Made before libpng's structures, and outside its jump points.
-  const std::vector<png_byte> compressed = zlib_stream(filtered_rows(rows));
+  const CompressedRows compressed(rows);
   PngContext context;
   context.fd = fd;
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &context, on_png_error, on_png_warning);

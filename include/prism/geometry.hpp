@@ -152,6 +152,19 @@ bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s);
 
 // The lights of `scene` whose sphere is visible, ascending.
 std::vector<uint32_t> lights_with_spheres(const Scene& scene);
+
+// A world-space sphere that holds a bounded object: the smaller of its
+// plugin's bounding_sphere (ABI 5, optional) and the sphere around its
+// local box, moved by the object's frame (a rotation keeps the radius:
+// tighter than a sphere around the world box of a rotated object), grown
+// by 1e-12 relative and 1e-15 of the coordinates for the rounding of the
+// centre. Throws RuntimeError naming the plugin when the plugin's sphere is
+// not finite or has a negative radius.
+struct WorldSphere {
+  glm::dvec3 center{0};
+  double radius = 0;
+};
+WorldSphere world_bounding_sphere(const Object& object);
 // Closest sphere of `lights` (from lights_with_spheres) with tmin < t <= tmax
 // (ties: lower light index).
 Hit intersect_light_spheres(const Scene& scene, std::span<const uint32_t> lights, const Ray& ray, double tmin,

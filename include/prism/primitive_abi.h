@@ -33,6 +33,11 @@
  * one source (the SDK's PRISM_SHARED_INTERSECT); a hand-written plugin gets
  * its double `intersect` there (describe_primitive's default), which a
  * caller can recognise by the equal pointers.
+ *
+ * Version 5 added `bounding_sphere` (optional): a sphere that holds the
+ * primitive, tighter than the one around its box for round shapes (a
+ * sphere's own radius, not sqrt(3) times it), so a CPU backend passes fewer
+ * candidate objects on to `intersect`.
  * A plugin built against an older version is refused at load with a
  * message that says to rebuild it against this SDK.
  */
@@ -46,7 +51,7 @@
 extern "C" {
 #endif
 
-#define PRISM_PRIMITIVE_ABI_VERSION 4u
+#define PRISM_PRIMITIVE_ABI_VERSION 5u
 #define PRISM_PRIMITIVE_ENTRY_SYMBOL "prism_primitive_entry"
 #define PRISM_EXPORT __attribute__((visibility("default")))
 
@@ -198,6 +203,15 @@ typedef struct PrismPrimitiveDesc {
    * data, a local point for some plugins, then carries float rounding).
    * Equal to `intersect` for a plugin without a float instantiation. */
   int (*intersect_float)(const void* record, const PrismRay* ray, double tmin, double tmax, PrismHit* hit);
+
+  /* Version 5, optional (NULL: the core takes the sphere around `bounds`).
+   * A sphere in the local frame that holds every point of the primitive
+   * (every point `surface` reports for a hit of `intersect`, up to
+   * rounding): its centre and radius.
+   * Returns 0 when the primitive is unbounded. The core keeps whichever of
+   * this sphere and the box's is smaller. A sphere that misses part of the
+   * primitive makes backends miss hits there: `prism plugin check` tests it. */
+  int (*bounding_sphere)(const void* record, double center[3], double* radius);
 } PrismPrimitiveDesc;
 
 typedef const PrismPrimitiveDesc* (*PrismPrimitiveEntryFn)(void);

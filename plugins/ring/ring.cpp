@@ -55,6 +55,13 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return 1;
 }
 
+// The annulus lies in the disc of the outer radius.
+int bounding_sphere(const void* record, double center[3], double* radius) {
+  store3(glm::dvec3(0.0), center);
+  *radius = record_of<RingRecord>(record).outer;
+  return 1;
+}
+
 // The plane y = 0 in long double (see prism/sdk/refine.hpp).
 void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
   Vec3x p;
@@ -65,7 +72,7 @@ void refine(const void*, const PrismRayExt* ray, PrismHit* hit) {
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(ring_intersect)>(
     "ring", PRISM_PRIMITIVE_TRANSFORMABLE | PRISM_PRIMITIVE_CONVEX, kFields, sizeof(RingRecord), validate, pack, bounds,
-    f64::abi_surface<f64::ring_surface>, kPluginGlsl, "ring", refine);
+    f64::abi_surface<f64::ring_surface>, kPluginGlsl, "ring", refine, bounding_sphere);
 
 }  // namespace
 

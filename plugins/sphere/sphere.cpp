@@ -39,6 +39,13 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return 1;
 }
 
+// The sphere itself.
+int bounding_sphere(const void* record, double center[3], double* radius) {
+  store3(glm::dvec3(0.0), center);
+  *radius = record_of<SphereRecord>(record).radius;
+  return 1;
+}
+
 // |p|^2 - r^2 in long double (see prism/sdk/refine.hpp).
 void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   const long double r = record_of<SphereRecord>(record).radius;
@@ -47,7 +54,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(sphere_intersect)>(
     "sphere", PRISM_PRIMITIVE_TRANSFORMABLE | PRISM_PRIMITIVE_CONVEX, kFields, sizeof(SphereRecord), validate_nothing, pack, bounds,
-    f64::abi_surface<f64::sphere_surface>, kPluginGlsl, "sphere", refine);
+    f64::abi_surface<f64::sphere_surface>, kPluginGlsl, "sphere", refine, bounding_sphere);
 
 }  // namespace
 

@@ -55,6 +55,14 @@ int bounds(const void* record, double lo[3], double hi[3]) {
   return 1;
 }
 
+// Every point lies within major + minor of the centre.
+int bounding_sphere(const void* record, double center[3], double* radius) {
+  const auto& rec = record_of<TorusRecord>(record);
+  store3(glm::dvec3(0.0), center);
+  *radius = rec.major + rec.minor;
+  return 1;
+}
+
 // The signed distance from the tube, sqrt((rho - R)^2 + y^2) - r with rho the
 // distance from the y axis, in long double (see prism/sdk/refine.hpp): it
 // stays well scaled for thin tubes, where the quartic's value does not.
@@ -72,7 +80,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
 
 const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(torus_intersect)>(
     "torus", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(TorusRecord), validate, pack, bounds,
-    f64::abi_surface<f64::torus_surface>, kPluginGlsl, "torus", refine);
+    f64::abi_surface<f64::torus_surface>, kPluginGlsl, "torus", refine, bounding_sphere);
 
 }  // namespace
 

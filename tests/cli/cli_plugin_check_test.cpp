@@ -17,7 +17,7 @@ class PluginCheck : public CliTest {};
 TEST_F(PluginCheck, PrintsTheDescriptorAndPassesOnEmbree) {
   RunResult r = run({"plugin", "check", built_plugin("torus").string(), "-b", "embree"});
   ASSERT_TRUE(ExitedWith(r, 0));
-  for (const char* part : {"torus 1.0.0 (ABI 4)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
+  for (const char* part : {"torus 1.0.0 (ABI 5)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
                            "major_radius", "minor_radius", "required", "embree (double): ids agree on 100.000 %",
                            "PASS"})
     EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
@@ -40,9 +40,12 @@ TEST_P(PacketEntries, AgreeWithTheScalarIntersectorBitForBit) {
   // double one standing in for a plugin without a float instantiation.
   EXPECT_TRUE(contains_any(r.out, "float entry: within the float caps|float entry: the double intersector stands in"))
       << r.out;
+  // Its bounding sphere (ABI 5; the box's without one) holds every hit
+  // point, or the primitive is unbounded.
+  EXPECT_TRUE(contains_any(r.out, "): holds every hit point on|bounding sphere: none (unbounded)")) << r.out;
 }
 
-// Every plugin built carries the ABI 4 float entry, and one written in the
+// Every plugin built carries the float entry (ABI 4), and one written in the
 // shared dialect (its GLSL is its C++ source) has a float instantiation of
 // its own there.
 class FloatEntry : public ::testing::TestWithParam<std::string> {};
@@ -52,7 +55,7 @@ TEST_P(FloatEntry, IsPresentInTheDescriptor) {
   auto plugin = load_primitive_plugin(built_plugin(GetParam()), error);
   ASSERT_TRUE(plugin) << error;
   const PrismPrimitiveDesc& d = plugin->desc();
-  EXPECT_EQ(d.abi_version, 4u);
+  EXPECT_EQ(d.abi_version, 5u);
   ASSERT_NE(d.intersect_float, nullptr);
   const bool shared_dialect = d.glsl_source && std::string(d.glsl_source).find("OUT(PrismHit)") != std::string::npos;
   if (shared_dialect) {

@@ -231,6 +231,33 @@ TEST_P(WrongPrimitiveAnswer, PluginCheckFails) {
 INSTANTIATE_TEST_SUITE_P(Faults, WrongPrimitiveAnswer, testing::ValuesIn(kWrongAnswers),
                          [](const testing::TestParamInfo<WrongAnswer>& info) { return std::string(info.param.name); });
 
+// ------------------------------------------------ bounding spheres that are not
+
+// A bounding sphere smaller than the primitive: the self-test finds a hit
+// point outside it (exit 1). One with a NaN radius: the self-test fails, and
+// so does an Embree render (its light buffers read the spheres), naming the
+// plugin and the object.
+TEST_F(FaultyPlugins, PluginCheckFailsABoundingSphereThatMissesHits) {
+  const fs::path file = plugins_ / "libprism_primitive_smallsphere.so";
+  RunResult r = run_with_plugins({"plugin", "check", file.string(), "-b", "reference", "--rays", "200"});
+  EXPECT_TRUE(ExitedWith(r, 1)) << r;
+  EXPECT_NE(r.out.find("bounding sphere (the plugin's, or the box's if smaller): FAIL: misses a hit point"),
+            std::string::npos) << r;
+}
+
+TEST_F(FaultyPlugins, ABoundingSphereOfNanRadiusIsRefusedNamingThePlugin) {
+  const fs::path file = plugins_ / "libprism_primitive_nansphere.so";
+  RunResult check = run_with_plugins({"plugin", "check", file.string(), "-b", "reference", "--rays", "200"});
+  EXPECT_TRUE(ExitedWith(check, 1)) << check;
+  EXPECT_NE(check.out.find("returned a bounding sphere of centre (0, 0, 0) and radius nan"), std::string::npos) << check;
+  if (!prism::test::require_backend_or_skip("embree")) return;
+  RunResult r = render_with(R"({"type": "nansphere", "radius": 1, "center": [2, 0, 0]})", "embree");
+  EXPECT_TRUE(ExitedWith(r, 1)) << r;
+  EXPECT_TRUE(StderrHas(r, {"primitive plugin 'nansphere'", "returned a bounding sphere", "for its object at (2, 0, 0)"}))
+      << r;
+  EXPECT_FALSE(fs::exists(path("out.png")));
+}
+
 // ------------------------------------------------ GLSL that does not compile
 
 class BadGlsl : public FaultyPlugins, public testing::WithParamInterface<std::string> {

@@ -276,7 +276,7 @@ Image blank(const RenderSettings& settings) {
   Image image;
   image.width = settings.image.width;
   image.height = settings.image.height;
-  image.rgb.assign(size_t(image.width) * size_t(image.height) * 3, 0.0f);
+  assign_channel(image.rgb, size_t(image.width) * size_t(image.height) * 3, 0.0f);
   assign_aovs(image, settings);
   return image;
 }

@@ -45,12 +45,20 @@ ImageComparison compare_image_files(const ImageFile& a, const ImageFile& b, floa
 ImageFile read_image_file(const std::filesystem::path& file, size_t max_pixels = size_t(1) << 28,
                           int max_channels = std::numeric_limits<int>::max());
 
+// An 8-bit code's value as every reader here gives it (OpenImageIO's
+// conversion: the code times 1 / 255, in float).
+inline float code8_value(unsigned code) { return float(code) * (1.0f / 255.0f); }
+
 // Receives a decoded image one row at a time, top to bottom (see read_image_rows).
 struct ImageRowSink {
   // Once, before the first row: size, channels, names and format (no pixels).
   std::function<void(const ImageFile& header)> header;
   // `values`: width * channels floats, integer formats scaled to [0, 1].
   std::function<void(int y, const float* values)> row;
+  // Optional: for an 8-bit PNG, the rows as their width * channels codes
+  // instead of `row` (each code's value is code8_value of it), so that a
+  // sink that maps codes through a table skips the floats.
+  std::function<void(int y, const unsigned char* codes)> codes8 = {};
 };
 
 // read_image_file without the whole image in memory: refuses images over

@@ -6,6 +6,7 @@
 // and N are bit-identical to the `quadric` object each stands for.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 
 #include "prism/primitive_abi.h"
@@ -38,6 +39,15 @@ inline int axial_quadric_bounds(const void* record, double lo[3], double hi[3]) 
   return 1;
 }
 
+// The sphere around the cylinder of `radius` and `height` (the cone's too,
+// which lies inside it): centred halfway up the axis, through the rims.
+inline int axial_quadric_bounding_sphere(const void* record, double center[3], double* radius) {
+  const auto& rec = record_of<AxialQuadricRecord>(record);
+  store3(glm::dvec3(0.0, 0.5 * rec.height, 0.0), center);
+  *radius = std::hypot(rec.radius, 0.5 * rec.height);
+  return 1;
+}
+
 // Polishes a hit on x^2 + B y^2 + z^2 + J = 0 (refine.hpp), with B and J
 // formed in long double from radius and height: the packed doubles
 // -radius^2 and -(radius/height)^2 are rounded.
@@ -56,7 +66,7 @@ constexpr PrismPrimitiveDesc describe_axial_quadric(const char* type_name, const
                                                     const char* glsl_source, const char* glsl_prefix) {
   return describe_primitive<Intersect, IntersectFloat>(type_name, PRISM_PRIMITIVE_TRANSFORMABLE, fields, sizeof(AxialQuadricRecord),
                                        validate_nothing, pack, axial_quadric_bounds, Surface, glsl_source,
-                                       glsl_prefix, refine);
+                                       glsl_prefix, refine, axial_quadric_bounding_sphere);
 }
 
 }  // namespace prism::sdk

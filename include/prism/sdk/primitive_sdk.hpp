@@ -75,6 +75,7 @@ inline int validate_nothing(const double*, PrismError*) { return 0; }
 using IntersectFn = int (*)(const void*, const PrismRay*, double, double, PrismHit*);
 using RefineFn = void (*)(const void*, const PrismRayExt*, PrismHit*);
 using SurfaceFn = void (*)(const void*, const PrismRay*, const PrismHit*, PrismSurface*);
+using BoundingSphereFn = int (*)(const void*, double*, double*);
 
 // intersect_batch for plugins whose batch is just a loop over `intersect`.
 template <IntersectFn Intersect>
@@ -124,6 +125,8 @@ uint32_t occluded_packet(const void* record, const PrismRayPacket* rays, uint32_
 // plugin written in the shared dialect passes both entries with
 // PRISM_SHARED_INTERSECT (prism/sdk/shared_plugin.hpp); a hand-written one
 // has no float instantiation, and its double `Intersect` stands in.
+// `bounding_sphere` (version 5) is optional: without it the core uses the
+// sphere around `bounds`.
 template <IntersectFn Intersect, IntersectFn IntersectFloat = Intersect, size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t flags,
                                                 const PrismField (&fields)[FieldCount], uint32_t record_size,
@@ -133,7 +136,7 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                                                 void (*surface)(const void*, const PrismRay*, const PrismHit*,
                                                                 PrismSurface*),
                                                 const char* glsl_source = nullptr, const char* glsl_prefix = nullptr,
-                                                RefineFn refine = nullptr) {
+                                                RefineFn refine = nullptr, BoundingSphereFn bounding_sphere = nullptr) {
   return PrismPrimitiveDesc{PRISM_PRIMITIVE_ABI_VERSION,
                             sizeof(PrismPrimitiveDesc),
                             type_name,
@@ -154,7 +157,8 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                             refine,
                             intersect_packet<Intersect>,
                             occluded_packet<Intersect>,
-                            IntersectFloat};
+                            IntersectFloat,
+                            bounding_sphere};
 }
 
 // Fills a PrismSurface from local point, normal and uv.
