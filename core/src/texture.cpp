@@ -179,11 +179,14 @@ class TexelDecoder {
   }
 
   void row(int y, const float* values) {
-    switch (channels_) {  // one loop per layout: the per-texel work is a few table reads
-      case 1: return decode_row<1>(y, values);
-      case 2: return decode_row<2>(y, values);
-      case 3: return decode_row<3>(y, values);
-      default: return decode_row<4>(y, values);
+    const int colour_channels = (channels_ == 2 || channels_ == 4) ? channels_ - 1 : channels_;
+    for (int x = 0; x < texture_.width; ++x) {
+      float p[4];
+      std::copy_n(values + size_t(x) * size_t(channels_), channels_, p);
+      if (!srgb_table_.empty())
+        for (int c = 0; c < colour_channels; ++c) p[c] = srgb_table_[size_t(std::lround(p[c] * max_code_))];
+      if (finite_check_) refuse_non_finite(x, y, p);
+      texture_.texels.push_back(expand_channels(p, channels_));
     }
   }
 
@@ -204,22 +207,6 @@ class TexelDecoder {
     for (unsigned code = 0; code < 256; ++code) {
       code_values_[0][code] = srgb_table_.empty() ? code8_value(code) : srgb_table_[code];
       code_values_[1][code] = code8_value(code);
-    }
-  }
-
-  template <int kChannels>
-  void decode_row(int y, const float* values) {
-    constexpr int kColourChannels = (kChannels == 2 || kChannels == 4) ? kChannels - 1 : kChannels;
-    const bool srgb = !srgb_table_.empty();
-    for (int x = 0; x < texture_.width; ++x) {
-      float p[4];
-      std::copy_n(values + size_t(x) * kChannels, kChannels, p);
-      // p[c] is a code times 1 / max in float (the decoders' conversion), so
-      // adding a half and truncating gives the code, as std::lround would, without its library call.
-      if (srgb)
-        for (int c = 0; c < kColourChannels; ++c) p[c] = srgb_table_[size_t(p[c] * max_code_ + 0.5f)];
-      if (finite_check_) refuse_non_finite(x, y, p);
-      texture_.texels.push_back(expand_channels(p, kChannels));
     }
   }
 
