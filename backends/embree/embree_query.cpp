@@ -544,37 +544,35 @@ Hit EmbreeQuery::camera_closest(const Ray& ray) const {
   return ctx.best;
 }
 
-bool EmbreeQuery::light_candidates(size_t light, const Ray& ray, double tmax, std::span<const int32_t>& out) const {
-  if (!views_ || light >= views_->lights.size()) return false;
-  if (const auto& point = views_->points[light]) {
-    // Where the ray ends, against the light (embree_view_buffers.cpp, "Reach").
-    // |end - apex| + rounding <= reach, compared in squares (no square
-    // root): the factor 1 - 2^-50 keeps the squares' own rounding (a few
-    // ulps) on the safe side, so no ray the buffer cannot vouch for is taken.
-    const glm::dvec3 to_end = ray.origin + tmax * ray.dir - point->apex();
-    const double rounding = 0x1p-48 * (max_abs(ray.origin) + tmax + max_abs(point->apex()));
-    const double slack = point->reach() - rounding;
-    if (!(slack > 0 && glm::dot(to_end, to_end) <= slack * slack * (1 - 0x1p-50))) return false;
-    out = point->candidates(-ray.dir);
-    return true;
+void EmbreeQuery::light_keys(size_t light, const RayLanes& rays, int32_t* keys) const {
+  // The buffers' cells (embree_view_buffers.hpp); kNoCell where no buffer applies.
+  if (views_ && light < views_->lights.size()) {
+    if (const auto& point = views_->points[light]) return point->cells_toward(rays, keys);
+    if (const auto& parallel = views_->parallels[light]) return parallel->cells_of(rays, keys);
   }
-  const auto& parallel = views_->parallels[light];
-  if (!parallel || ray.dir != parallel->dir() || !parallel->covers(ray.origin)) return false;
-  out = parallel->candidates(ray.origin);
-  return true;
+  std::fill_n(keys, rays.count, kNoCell);
 }
 
-int32_t EmbreeQuery::light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear) const {
-  std::span<const int32_t> candidates;
-  if (!light_candidates(light, ray, tmax, candidates)) return occluder(ray, tmax);
+int32_t EmbreeQuery::keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
+                                          int32_t key) const {
+  if (key == kNoCell) return occluder(ray, tmax);
   if (!(tmax > 0.0)) return kMissId;
   for (int32_t id : views_->unbounded)
     if (!clear.has(id) && blocks(scene_.objects[id], ray, tmax)) return id;
-  for (int32_t id : candidates) {
+  if (key == kNoCandidates) return kMissId;
+  const auto& point = views_->points[light];
+  for (int32_t id : point ? point->cell(key) : views_->parallels[light]->cell(key)) {
     if (clear.has(id) || misses_bound(ray, tmax, views_->bound_of[size_t(id)])) continue;
     if (blocks(scene_.objects[id], ray, tmax)) return id;
   }
   return kMissId;
+}
+
+int32_t EmbreeQuery::light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear) const {
+  const RayLanes one{{&ray.origin.x, &ray.origin.y, &ray.origin.z}, {&ray.dir.x, &ray.dir.y, &ray.dir.z}, &tmax, 1};
+  int32_t key = kNoCell;
+  light_keys(light, one, &key);
+  return keyed_light_occluder(light, ray, tmax, clear, key);
 }
 
 }  // namespace prism::embree

@@ -58,6 +58,11 @@ class EmbreeQuery final : public ObjectQuery {
   // occluder(); the answers are the same either way.
   Hit camera_closest(const Ray& ray) const override;
   int32_t light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear = {}) const override;
+  // The keys: a light buffer's cell, kNoCandidates, or kNoCell where no
+  // buffer vouches for the ray (embree_view_buffers.hpp).
+  void light_keys(size_t light, const RayLanes& rays, int32_t* keys) const override;
+  int32_t keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
+                               int32_t key) const override;
   // Whether light buffers are in use (for tests and --stats).
   bool has_views() const { return views_.has_value(); }
 
@@ -141,9 +146,6 @@ class EmbreeQuery final : public ObjectQuery {
     std::vector<std::optional<ParallelBuffer>> parallels;  // by light: directional lights
   };
   void start_views();
-  // The objects a shadow ray toward `light` may meet besides the unbounded
-  // ones, or false where no buffer applies to the ray.
-  bool light_candidates(size_t light, const Ray& ray, double tmax, std::span<const int32_t>& out) const;
 
   const Scene& scene_;
   Device& device_;

@@ -172,26 +172,94 @@ PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> sp
   }
 }
 
-size_t PointBuffer::cell_of(const glm::dvec3& dir) const {
-  // face_frame's axes by name (glm's operator[] is a switch, and this runs
-  // for every buffered ray): the major axis, then u = the next one, v = the one after.
-  const double ax = std::abs(dir.x), ay = std::abs(dir.y), az = std::abs(dir.z);
-  int face;
-  double major, u, v;
-  if (ax >= ay && ax >= az) {
-    face = dir.x < 0 ? 1 : 0, major = ax, u = dir.y, v = dir.z;
-  } else if (ay >= az) {
-    face = dir.y < 0 ? 3 : 2, major = ay, u = dir.z, v = dir.x;
-  } else {
-    face = dir.z < 0 ? 5 : 4, major = az, u = dir.x, v = dir.y;
-  }
+namespace {
+
+// The cell of direction (x, y, z) in a cube map of `resolution` cells a
+// face edge, written with selects, not branches, so that a loop over rays
+// runs in the vector unit's lanes.
+[[gnu::always_inline]] inline int32_t cube_cell(double x, double y, double z, int32_t resolution) {
+  // The major axis (ties to x, then y), then u = the next one, v = the one after.
+  const double ax = std::abs(x), ay = std::abs(y), az = std::abs(z);
+  const bool on_x = (ax >= ay) & (ax >= az), on_y = !on_x & (ay >= az);
+  const double major = on_x ? ax : on_y ? ay : az;
+  const double u = on_x ? y : on_y ? z : x, v = on_x ? z : on_y ? x : y;
+  const double along = on_x ? x : on_y ? y : z;  // its sign picks the face (in doubles, so GCC vectorizes)
+  const int32_t face = int32_t((on_x ? 0.0 : on_y ? 2.0 : 4.0) + (along < 0 ? 1.0 : 0.0));
   // One division for both coordinates: c * (1 / major) may differ from
   // c / major by an ulp, which moves only a direction within ~1e-16 of a
   // cell's edge into the next cell, and the lists' cosine margin (the top)
-  // covers that.
-  const double inverse = 1.0 / major;
-  auto index = [&](double c) { return std::clamp(int((c * inverse + 1) * 0.5 * resolution_), 0, resolution_ - 1); };
-  return size_t((face * resolution_ + index(v)) * resolution_ + index(u));
+  // covers that. Clamped before the conversion to an integer (a NaN to 0),
+  // which truncates as the clamp of the truncation would.
+  const double inverse = 1.0 / major, last = double(resolution - 1);
+  auto index = [&](double c) {
+    const double f = (c * inverse + 1) * 0.5 * resolution;
+    return int32_t(f > 0 ? (f < last ? f : last) : 0.0);
+  };
+  return (face * resolution + index(v)) * resolution + index(u);
+}
+
+// The lane loops below, compiled for SSE2 and for AVX2 (chosen at run time,
+// as the box filter's are): every lane computes the scalar expressions, so
+// either gives the same cells.
+
+// A shadow ray ends at origin + tmax dir, within the offset of its point
+// light: within reach of the apex when |end - apex| plus its rounding is at
+// most reach, compared in squares (no square root). The factor 1 - 2^-50
+// keeps the squares' own rounding (a few ulps) on the safe side, so no ray
+// the buffer cannot vouch for is taken.
+[[gnu::always_inline]] inline void toward_lanes(const RayLanes& rays, glm::dvec3 apex, double reach, int32_t resolution,
+                                                int32_t* cells) {
+  const double apex_size = max_abs(apex);
+  const double *const x = rays.origin[0], *const y = rays.origin[1], *const z = rays.origin[2];
+  const double *const u = rays.dir[0], *const v = rays.dir[1], *const w = rays.dir[2], *const tmax = rays.tmax;
+  const size_t count = rays.count;
+  for (size_t j = 0; j < count; ++j) {
+    const double ox = x[j], oy = y[j], oz = z[j];
+    const double dx = u[j], dy = v[j], dz = w[j], t = tmax[j];
+    const double ex = ox + t * dx - apex.x, ey = oy + t * dy - apex.y, ez = oz + t * dz - apex.z;
+    const double origin_size = std::max(std::max(std::abs(ox), std::abs(oy)), std::abs(oz));
+    const double slack = reach - 0x1p-48 * (origin_size + t + apex_size);
+    const bool near = (slack > 0) & (ex * ex + ey * ey + ez * ez <= slack * slack * (1 - 0x1p-50));
+    const int32_t cell = cube_cell(-dx, -dy, -dz, resolution);
+    cells[j] = near ? cell : kNoCell;
+  }
+}
+
+void toward_lanes2(const RayLanes& rays, glm::dvec3 apex, double reach, int32_t resolution, int32_t* cells) {
+  toward_lanes(rays, apex, reach, resolution, cells);
+}
+
+bool runs_avx2() {
+#if defined(__x86_64__)
+  static const bool avx2 = __builtin_cpu_supports("avx2");
+  return avx2;
+#else
+  return false;
+#endif
+}
+
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] void toward_lanes4(const RayLanes& rays, glm::dvec3 apex, double reach, int32_t resolution,
+                                           int32_t* cells) {
+  toward_lanes(rays, apex, reach, resolution, cells);
+}
+#endif
+
+}  // namespace
+
+std::vector<int> lane_widths() {
+  std::vector<int> widths = {2};
+  if (runs_avx2()) widths.push_back(4);
+  return widths;
+}
+
+int32_t PointBuffer::cell_of(double x, double y, double z) const { return cube_cell(x, y, z, resolution_); }
+
+void PointBuffer::cells_toward(const RayLanes& rays, int32_t* cells, int width) const {
+#if defined(__x86_64__)
+  if (width == 4 || (width == 0 && runs_avx2())) return toward_lanes4(rays, apex_, reach_, resolution_, cells);
+#endif
+  toward_lanes2(rays, apex_, reach_, resolution_, cells);
 }
 
 ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double extent) : dir_(dir) {
@@ -234,18 +302,58 @@ ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSpher
   cells_ = CellLists(cells);
 }
 
-bool ParallelBuffer::covers(const glm::dvec3& origin) const { return max_abs(origin) <= origin_limit_; }
+namespace {
 
-std::span<const int32_t> ParallelBuffer::candidates(const glm::dvec3& origin) const {
-  if (resolution_ == 0) return none_;
+// A directional light's grid (ParallelBuffer): what grid_lanes needs of it.
+struct Grid {
+  glm::dvec3 dir, across[2];
+  glm::dvec2 lo;
+  double inverse_cell, origin_limit;
+  int32_t resolution;
+};
+
+[[gnu::always_inline]] inline void grid_lanes(const RayLanes& rays, const Grid& grid, int32_t* cells) {
   // Multiplied by the inverse cell size: an ulp off the division, covered
-  // by the cell each list has on every side.
-  const double u = (glm::dot(origin, across_[0]) - lo_.x) * inverse_cell_;
-  const double v = (glm::dot(origin, across_[1]) - lo_.y) * inverse_cell_;
-  // Outside the grid (and its rounding): no disc holds the point.
-  if (!(u >= -0.5 && v >= -0.5 && u < resolution_ + 0.5 && v < resolution_ + 0.5)) return none_;
-  const int i = std::clamp(int(std::floor(u)), 0, resolution_ - 1), j = std::clamp(int(std::floor(v)), 0, resolution_ - 1);
-  return cells_[size_t(j) * size_t(resolution_) + size_t(i)];
+  // by the cell each list has on every side. A point outside the grid (and
+  // its rounding) lies in no disc. Truncated, not floored: the two differ
+  // only on (-0.5, 0), where both clamp to cell 0.
+  const int32_t resolution = grid.resolution;
+  const double limit = double(resolution) + 0.5, last = double(resolution - 1);
+  const glm::dvec3 d = grid.dir, a = grid.across[0], b = grid.across[1];
+  const glm::dvec2 lo = grid.lo;
+  const double inverse_cell = grid.inverse_cell, origin_limit = grid.origin_limit;
+  const double *const x = rays.origin[0], *const y = rays.origin[1], *const z = rays.origin[2];
+  const double *const dx = rays.dir[0], *const dy = rays.dir[1], *const dz = rays.dir[2];
+  const size_t count = rays.count;
+  for (size_t j = 0; j < count; ++j) {
+    const double ox = x[j], oy = y[j], oz = z[j];
+    const bool along = (dx[j] == d.x) & (dy[j] == d.y) & (dz[j] == d.z);
+    const bool covered = std::max(std::max(std::abs(ox), std::abs(oy)), std::abs(oz)) <= origin_limit;
+    const double u = (ox * a.x + oy * a.y + oz * a.z - lo.x) * inverse_cell;
+    const double v = (ox * b.x + oy * b.y + oz * b.z - lo.y) * inverse_cell;
+    const bool inside = (resolution > 0) & (u >= -0.5) & (v >= -0.5) & (u < limit) & (v < limit);
+    const double i = u > 0 ? (u < last ? u : last) : 0.0, k = v > 0 ? (v < last ? v : last) : 0.0;
+    const int32_t cell = int32_t(k) * resolution + int32_t(i);
+    cells[j] = !(along & covered) ? kNoCell : inside ? cell : kNoCandidates;
+  }
+}
+
+void grid_lanes2(const RayLanes& rays, const Grid& grid, int32_t* cells) { grid_lanes(rays, grid, cells); }
+
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] void grid_lanes4(const RayLanes& rays, const Grid& grid, int32_t* cells) {
+  grid_lanes(rays, grid, cells);
+}
+#endif
+
+}  // namespace
+
+void ParallelBuffer::cells_of(const RayLanes& rays, int32_t* cells, int width) const {
+  const Grid grid{dir_, {across_[0], across_[1]}, lo_, inverse_cell_, origin_limit_, resolution_};
+#if defined(__x86_64__)
+  if (width == 4 || (width == 0 && runs_avx2())) return grid_lanes4(rays, grid, cells);
+#endif
+  grid_lanes2(rays, grid, cells);
 }
 
 }  // namespace prism::embree

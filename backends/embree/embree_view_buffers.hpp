@@ -16,7 +16,15 @@
 
 #include <glm/glm.hpp>
 
+#include "prism/cpu_render.hpp"
+
 namespace prism::embree {
+
+// What a buffer's lane lookups (cells_of) give a ray besides a cell: the
+// buffer cannot vouch for it (the full query answers it), or the ray can
+// meet no listed object (only the unbounded ones).
+constexpr int32_t kNoCell = -1;
+constexpr int32_t kNoCandidates = -2;
 
 // A world-space sphere that holds object `id`.
 struct BoundSphere {
@@ -25,6 +33,10 @@ struct BoundSphere {
   int32_t id = 0;
 };
 
+
+// The lane widths the buffers' lookups run at on this processor: 2 (SSE2),
+// and 4 where it has AVX2.
+std::vector<int> lane_widths();
 
 // Object ids per cell, each cell's ascending, in one array.
 class CellLists {
@@ -52,10 +64,20 @@ class PointBuffer {
   double reach() const { return reach_; }
   // Every object whose sphere meets a half-line that starts within `reach`
   // of the apex and runs along `dir` (unit length).
-  std::span<const int32_t> candidates(const glm::dvec3& dir) const { return cells_[cell_of(dir)]; }
+  std::span<const int32_t> candidates(const glm::dvec3& dir) const {
+    return cells_[size_t(cell_of(dir.x, dir.y, dir.z))];
+  }
+  // Rays that end near the apex (shadow rays toward a point light there),
+  // all at once: cells[j] is the cell of ray j's reversed direction, whose
+  // list holds every object the ray may meet, or kNoCell where its end lies
+  // too far from the apex for the lists ("Reach" in the .cpp).
+  // `width`: the lanes (2, or 4 with AVX2; 0: the widest the processor
+  // runs); every width gives the same cells.
+  void cells_toward(const RayLanes& rays, int32_t* cells, int width = 0) const;
+  std::span<const int32_t> cell(int32_t index) const { return cells_[size_t(index)]; }
 
  private:
-  size_t cell_of(const glm::dvec3& dir) const;
+  int32_t cell_of(double x, double y, double z) const;
   glm::dvec3 apex_;
   double reach_;
   int resolution_;  // cells per face edge
@@ -69,10 +91,12 @@ class ParallelBuffer {
  public:
   ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double extent);
   const glm::dvec3& dir() const { return dir_; }
-  // Whether origin is near enough for the lists' margin (see the .cpp).
-  bool covers(const glm::dvec3& origin) const;
-  // Every object whose sphere meets the half-line origin + t * dir(), t > 0.
-  std::span<const int32_t> candidates(const glm::dvec3& origin) const;
+  // Rays along dir() all at once: cells[j] is the cell whose list holds
+  // every object whose sphere meets ray j (origin + t dir, t > 0), or
+  // kNoCandidates where no sphere can, or kNoCell where the ray does not run
+  // along dir() or starts too far for the lists' margin (see the .cpp).
+  void cells_of(const RayLanes& rays, int32_t* cells, int width = 0) const;
+  std::span<const int32_t> cell(int32_t index) const { return cells_[size_t(index)]; }
 
  private:
   glm::dvec3 dir_;
@@ -83,7 +107,6 @@ class ParallelBuffer {
   double inverse_cell_ = 1;
   int resolution_ = 0;    // cells per side
   CellLists cells_;
-  std::span<const int32_t> none_;
 };
 
 }  // namespace prism::embree

@@ -61,7 +61,7 @@ struct Counts {
   int rays = 0, hits = 0, blocked = 0;
 };
 
-void check_camera_rays(Rng& rng, const Scene& scene, EmbreeQuery& query, Counts& counts) {
+void check_camera_rays(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& counts) {
   const glm::dvec3 eye = 14.0 * random_unit(rng);
   query.prepare_views(eye);
   for (int i = 0; i < 1500; ++i) {
@@ -99,33 +99,129 @@ void check_shadow_rays(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& count
   }
 }
 
-TEST(EmbreeViews, CameraRaysMatchBruteForce) {
-  REQUIRE_PRIMITIVE("sphere");
+// Shadow rays in lanes, as the shading casts them: many toward one light,
+// their cells looked up at once (light_keys), then answered one by one.
+void check_shadow_lanes(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& counts) {
+  scene.lights = {random_light(rng), random_light(rng)};
+  const glm::dvec3 eye = 14.0 * random_unit(rng);
+  query.prepare_views(eye);
+  for (size_t k = 0; k < scene.lights.size(); ++k) {
+    std::vector<Ray> rays;
+    std::vector<double> tmax;
+    while (rays.size() < 61) {  // not a multiple of any lane width
+      glm::dvec3 point, normal;
+      if (!random_surface_point(rng, scene, eye, point, normal)) continue;
+      rays.push_back(shadow_ray(scene.lights[k], point, normal, tmax.emplace_back()));
+    }
+    std::array<std::vector<double>, 3> origin, dir;
+    for (const Ray& ray : rays)
+      for (int a = 0; a < 3; ++a) {
+        origin[size_t(a)].push_back(ray.origin[a]);
+        dir[size_t(a)].push_back(ray.dir[a]);
+      }
+    const RayLanes lanes{{origin[0].data(), origin[1].data(), origin[2].data()},
+                         {dir[0].data(), dir[1].data(), dir[2].data()}, tmax.data(), rays.size()};
+    std::vector<int32_t> keys(rays.size());
+    query.light_keys(k, lanes, keys.data());
+    for (size_t j = 0; j < rays.size(); ++j) {
+      const bool want = brute_occluded(scene, rays[j], tmax[j]);
+      ASSERT_EQ(query.keyed_light_occluder(k, rays[j], tmax[j], {}, keys[j]) != kMissId, want) << "light " << k;
+      ++counts.rays;
+      counts.blocked += want;
+    }
+  }
+}
+
+// `check` on `count` random scenes of every plugin type, 12, 12 + step, ...
+// objects: few enough for the light buffers.
+template <class Check>
+void on_random_scenes(uint64_t seed, int count, int step, Counts& counts, const Check& check) {
   const auto types = available_types();
-  Rng rng(11);
-  Counts counts;
-  for (int s = 0; s < 8; ++s) {
-    const Scene scene = load(random_objects_json(rng, types, 12 + 6 * s));
+  Rng rng(seed);
+  for (int s = 0; s < count; ++s) {
+    Scene scene = load(random_objects_json(rng, types, 12 + step * s));
     EmbreeQuery query(scene, device());
-    ASSERT_NO_FATAL_FAILURE(check_camera_rays(rng, scene, query, counts));
+    ASSERT_NO_FATAL_FAILURE(check(rng, scene, query, counts));
     ASSERT_TRUE(query.has_views());
   }
+}
+
+TEST(EmbreeViews, CameraRaysMatchBruteForce) {
+  REQUIRE_PRIMITIVE("sphere");
+  Counts counts;
+  on_random_scenes(11, 8, 6, counts, check_camera_rays);
   EXPECT_GT(counts.hits, 6000);
 }
 
 TEST(EmbreeViews, ShadowRaysMatchBruteForce) {
   REQUIRE_PRIMITIVE("sphere");
-  const auto types = available_types();
-  Rng rng(12);
   Counts counts;
-  for (int s = 0; s < 8; ++s) {
-    Scene scene = load(random_objects_json(rng, types, 12 + 6 * s));
-    EmbreeQuery query(scene, device());
-    ASSERT_NO_FATAL_FAILURE(check_shadow_rays(rng, scene, query, counts));
-    ASSERT_TRUE(query.has_views());
-  }
+  on_random_scenes(12, 8, 6, counts, check_shadow_rays);
   EXPECT_GT(counts.rays, 20000);
   EXPECT_GT(counts.blocked, 4000);
+}
+
+TEST(EmbreeViews, ShadowRaysInLanesMatchBruteForce) {
+  REQUIRE_PRIMITIVE("sphere");
+  Counts counts;
+  on_random_scenes(16, 16, 3, counts, [](Rng& rng, Scene& scene, EmbreeQuery& query, Counts& c) {
+    for (int round = 0; round < 10; ++round) ASSERT_NO_FATAL_FAILURE(check_shadow_lanes(rng, scene, query, c));
+  });
+  EXPECT_EQ(counts.rays, 16 * 10 * 2 * 61);
+  EXPECT_GT(counts.blocked, 2000);
+}
+
+// Every lane width looks up the same cells as one ray at a time, for rays
+// near and far from a point light, along and across a directional one.
+TEST(EmbreeViews, EveryLaneWidthLooksUpTheSameCells) {
+  Rng rng(17);
+  std::vector<BoundSphere> spheres;
+  for (int32_t id = 0; id < 24; ++id)
+    spheres.push_back({glm::dvec3(uniform(rng, -8, 8), uniform(rng, -8, 8), uniform(rng, -8, 8)), uniform(rng, 0.1, 2), id});
+  const glm::dvec3 apex(1, 9, 2), sun = random_unit(rng);
+  const PointBuffer point(apex, spheres, 0.05);
+  const ParallelBuffer parallel(sun, spheres, 10.0);
+  std::array<std::vector<double>, 3> origin, toward, along;
+  std::vector<double> tmax, infinite;
+  for (int j = 0; j < 1003; ++j) {
+    const glm::dvec3 o(uniform(rng, -20, 20), uniform(rng, -20, 20), uniform(rng, -20, 20));
+    // Toward the apex, ending on it, short of it or past it; some along an axis or a face's diagonal.
+    glm::dvec3 d = j % 7 == 0 ? glm::dvec3(0, 1, 0) : j % 11 == 0 ? glm::normalize(glm::dvec3(1, 1, 0)) : glm::normalize(apex - o);
+    const double t = glm::length(apex - o) + (j % 3 == 0 ? 0.0 : uniform(rng, -0.2, 0.2));
+    const glm::dvec3 s = j % 5 == 0 ? random_unit(rng) : sun;
+    for (int a = 0; a < 3; ++a) {
+      origin[size_t(a)].push_back(o[a]);
+      toward[size_t(a)].push_back(d[a]);
+      along[size_t(a)].push_back(s[a]);
+    }
+    tmax.push_back(t);
+    infinite.push_back(kInfinity);
+  }
+  auto lanes = [&](const std::array<std::vector<double>, 3>& dir, const std::vector<double>& t, size_t first,
+                   size_t count) {
+    return RayLanes{{origin[0].data() + first, origin[1].data() + first, origin[2].data() + first},
+                    {dir[0].data() + first, dir[1].data() + first, dir[2].data() + first}, t.data() + first, count};
+  };
+  const size_t n = tmax.size();
+  std::vector<int32_t> point_one(n), parallel_one(n);
+  for (size_t j = 0; j < n; ++j) {
+    point.cells_toward(lanes(toward, tmax, j, 1), &point_one[j], 2);
+    parallel.cells_of(lanes(along, infinite, j, 1), &parallel_one[j], 2);
+  }
+  int near = 0, inside = 0;
+  for (size_t j = 0; j < n; ++j) {
+    near += point_one[j] >= 0;
+    inside += parallel_one[j] >= 0;
+  }
+  EXPECT_GT(near, 300);  // the test looks up cells, not only refusals
+  EXPECT_GT(inside, 150);
+  for (const int width : lane_widths()) {
+    std::vector<int32_t> point_cells(n), parallel_cells(n);
+    point.cells_toward(lanes(toward, tmax, 0, n), point_cells.data(), width);
+    parallel.cells_of(lanes(along, infinite, 0, n), parallel_cells.data(), width);
+    EXPECT_EQ(point_cells, point_one) << "width " << width;
+    EXPECT_EQ(parallel_cells, parallel_one) << "width " << width;
+  }
 }
 
 // A light inside an object's sphere, on an object's box, and shadow rays

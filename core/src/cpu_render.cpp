@@ -31,35 +31,46 @@ void store3(float* out, const glm::dvec3& v) {
   for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(v[c]);
 }
 
-// One pixel: the mean of its samples, summed in sample order (so the result
-// never depends on threads), plus the AOVs of sample 0.
-void render_pixel(const Frame& f, Shader& shader, int i, int j) {
-  const ImageSettings& s = f.settings.image;
+// One pixel from its samples' results: the mean of their radiance, summed
+// in sample order (so the result never depends on threads), plus the AOVs
+// of sample 0.
+void store_pixel(const Frame& f, int i, int j, std::span<const SampleResult> samples) {
   glm::dvec3 sum(0.0);
-  for (int k = 0; k < s.spp; ++k) {
-    Ray ray = f.camera_rays(i, j, sample_offset(k));
-    SampleResult r = shader.trace_sample(ray, s.max_depth, k == 0 && f.settings.aov_path);
-    sum += r.radiance;
-    if (k == 0) {
-      size_t p = f.index(i, j);
-      if (f.settings.aov_id) f.image.id[p] = static_cast<float>(r.first_id);
-      if (f.settings.aov_path) f.image.path[p] = static_cast<float>(r.path_hash);
-      if (f.settings.aov_depth) f.image.depth[p] = static_cast<float>(r.first_t);
-      if (f.settings.aov_normal) store3(&f.image.normal[p * 3], r.first_normal);
-      if (f.settings.aov_albedo) store3(&f.image.albedo[p * 3], r.first_albedo);
-    }
-  }
-  glm::dvec3 mean = sum / double(s.spp);
-  float* out = &f.image.rgb[f.index(i, j) * 3];
-  for (int c = 0; c < 3; ++c) out[c] = static_cast<float>(mean[c]);
+  for (const SampleResult& r : samples) sum += r.radiance;
+  const SampleResult& r = samples.front();
+  const size_t p = f.index(i, j);
+  if (f.settings.aov_id) f.image.id[p] = static_cast<float>(r.first_id);
+  if (f.settings.aov_path) f.image.path[p] = static_cast<float>(r.path_hash);
+  if (f.settings.aov_depth) f.image.depth[p] = static_cast<float>(r.first_t);
+  if (f.settings.aov_normal) store3(&f.image.normal[p * 3], r.first_normal);
+  if (f.settings.aov_albedo) store3(&f.image.albedo[p * 3], r.first_albedo);
+  store3(&f.image.rgb[p * 3], sum / double(samples.size()));
 }
+
+// The shader lights its points in batches: pixels are traced, then stored
+// once a tile's worth of samples (or one pixel's, at a high spp) is finished.
+static_assert(Shader::kSamplesPerFinish == size_t(kTileSize) * kTileSize);
 
 void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts, PhaseProfile* profile) {
   const PixelRect& r = f.rect;
+  const ImageSettings& s = f.settings.image;
+  const size_t spp = size_t(s.spp);
   Shader shader(f.scene, f.query, counts, profile);
+  std::vector<glm::ivec2> traced;  // pixels waiting for their samples' light
+  auto store_traced = [&] {
+    const std::span<const SampleResult> results = shader.finish();
+    for (size_t p = 0; p < traced.size(); ++p) store_pixel(f, traced[p].x, traced[p].y, results.subspan(p * spp, spp));
+    traced.clear();
+  };
   int x0 = r.x + (tile % tiles_x) * kTileSize, y0 = r.y + (tile / tiles_x) * kTileSize;
   for (int j = y0; j < std::min(y0 + kTileSize, r.y + r.height); ++j)
-    for (int i = x0; i < std::min(x0 + kTileSize, r.x + r.width); ++i) render_pixel(f, shader, i, j);
+    for (int i = x0; i < std::min(x0 + kTileSize, r.x + r.width); ++i) {
+      for (int k = 0; k < s.spp; ++k)
+        shader.trace_sample(f.camera_rays(i, j, sample_offset(k)), s.max_depth, k == 0 && f.settings.aov_path);
+      traced.emplace_back(i, j);
+      if ((traced.size() + 1) * spp > Shader::kSamplesPerFinish) store_traced();
+    }
+  if (!traced.empty()) store_traced();
 }
 
 uint64_t ray_total(const RayCounts& counts) {

@@ -41,12 +41,48 @@ class PhaseScope {
   Clock::time_point start_;
 };
 
+// The time of its scope counted as shading, less the queries inside it
+// (which their own PhaseScopes add to their phases).
+class ShadingTime {
+ public:
+  explicit ShadingTime(PhaseProfile* profile)
+      : profile_(profile), before_(profile ? profile->ms : std::array<double, kPhases>{}), scope_(profile, kPhaseShading) {}
+  ~ShadingTime() {
+    if (!profile_) return;
+    for (int phase = 0; phase < kPhases; ++phase)
+      if (phase != kPhaseShading) profile_->ms[kPhaseShading] -= profile_->ms[size_t(phase)] - before_[size_t(phase)];
+  }
+  ShadingTime(const ShadingTime&) = delete;
+  ShadingTime& operator=(const ShadingTime&) = delete;
+
+ private:
+  PhaseProfile* profile_;
+  std::array<double, kPhases> before_;
+  PhaseScope scope_;
+};
+
 }  // namespace
 
 static_assert(std::size(kRayKindNames) == kRayKinds);
 static_assert(std::size(kPhaseNames) == kPhases);
 
 const char* ray_kind_name(int kind) { return kRayKindNames[kind]; }
+
+Shader::Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, PhaseProfile* profile)
+    : scene_(scene),
+      query_(query),
+      counts_(counts),
+      profile_(profile),
+      entry_(query.entry()),
+      sphere_lights_(lights_with_spheres(scene)),
+      last_blocker_(scene.lights.size(), kMissId),
+      lanes_(std::make_unique_for_overwrite<LightLanes>()) {  // no zeroing: every lane is written before it is read
+  results_.reserve(kSamplesPerFinish);
+  terms_end_.reserve(kSamplesPerFinish);
+  terms_.reserve(2 * kSamplesPerFinish);
+}
+
+Shader::~Shader() = default;
 
 struct Shader::Surface {
   glm::dvec3 position;
@@ -124,7 +160,7 @@ void Shader::note(uint32_t value) {
   }
 }
 
-bool Shader::shadowed(size_t light, const Ray& ray, double distance, int32_t self) {
+bool Shader::shadowed(size_t light, const Ray& ray, double distance, int32_t self, int32_t key) {
   ++counts_.n[kShadowRay];
   PhaseScope scope(profile_, kPhaseShadowRays);
   // Neighbouring shadow rays toward one light are mostly blocked by the same
@@ -137,70 +173,93 @@ bool Shader::shadowed(size_t light, const Ray& ray, double distance, int32_t sel
     if (blocks(scene_.objects[size_t(last)], ray, distance, entry_)) return true;
     clear.tested = last;
   }
-  const int32_t blocker = query_.light_occluder(light, ray, distance, clear);
+  const int32_t blocker = query_.keyed_light_occluder(light, ray, distance, clear, key);
   if (blocker != kMissId) last = blocker;
   return blocker != kMissId;
 }
 
-glm::dvec3 Shader::local_light(const Surface& s, const glm::dvec3& dir) {
+Shader::Radiance Shader::local_light(const Surface& s, const glm::dvec3& dir) {
+  if (lanes_->full()) light_batch();
   const Material& m = *s.material;
-  glm::dvec3 sum = scene_.ambient * s.color;
-  const glm::dvec3 origin = s.position + s.epsilon * s.n;
-  // Every shadow ray below leaves the surface on the side s.n faces (ndl >
-  // 0, origin offset along s.n).
-  const int32_t self = left_behind(s);
-  for (size_t k = 0; k < scene_.lights.size(); ++k) {
-    const Light& light = scene_.lights[k];
-    glm::dvec3 l, energy = light.color * light.intensity;
-    double distance = kInfinity;
-    if (light.type == Light::Type::Point) {
-      glm::dvec3 to = light.position - s.position;
-      double d = glm::length(to);
-      l = to / d;
-      energy /= 1.0 + light.linear * d + light.quadratic * d * d;
-      distance = glm::length(light.position - origin);
-    } else {
-      l = -light.direction;
-    }
-    double ndl = glm::dot(s.n, l);
-    if (!(ndl > 0)) continue;  // a light behind the surface adds nothing and needs no shadow ray
-    bool blocked = shadowed(k, {origin, l}, distance, self);
-    note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
-    glm::dvec3 visibility = blocked ? scene_.shadow_ambient : glm::dvec3(1.0);
-    const glm::dvec3 diffuse = m.diffuse * s.color * ndl;
-    double phong = 0.0;
-    if (m.specular > 0) {
-      glm::dvec3 r = -l - 2.0 * glm::dot(-l, s.n) * s.n;
-      const double highlight = glm::dot(r, -dir);
-      // pow(0, shininess >= 1) is 0: only a highlight facing the viewer needs pow.
-      if (highlight > 0 && !highlight_vanishes(m.specular, highlight, m.shininess, diffuse))
-        phong = m.specular * std::pow(highlight, m.shininess);
-    }
-    sum += energy * visibility * (diffuse + phong);
-  }
-  return sum;
+  const LightLanes::Point point{s.position, s.n,          s.position + s.epsilon * s.n,
+                                s.color,    dir,          m.diffuse,
+                                m.specular, m.shininess, left_behind(s)};
+  // Every shadow ray of the point leaves the surface on the side s.n faces
+  // (ndl > 0, origin offset along s.n).
+  return {glm::dvec3(0), int32_t(lanes_->add(point, scene_.ambient)), false};
 }
 
-glm::dvec3 Shader::shade1(const Ray& ray, int32_t leaving) {
+void Shader::light_batch() {
+  LightLanes& lanes = *lanes_;
+  LightLanes::Arrays& a = lanes.arrays();
+  const size_t count = lanes.size();
+  for (size_t k = 0; k < scene_.lights.size(); ++k) {
+    lanes.light_terms(scene_.lights[k]);  // l, energy, distance, n.l, diffuse, highlight; blocked and phong 0
+    query_.light_keys(k, lanes.shadow_rays(), a.key.data());
+    // A light behind the surface (n.l <= 0) adds nothing and needs no shadow ray.
+    for (size_t j = 0; j < count; ++j) {
+      if (!(a.ndl[j] > 0)) continue;
+      const Ray ray{{a.o[0][j], a.o[1][j], a.o[2][j]}, {a.l[0][j], a.l[1][j], a.l[2][j]}};
+      const bool blocked = shadowed(k, ray, a.distance[j], a.self[j], a.key[j]);
+      note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
+      a.blocked[j] = blocked ? 1.0 : 0.0;
+    }
+    // pow(0, shininess >= 1) is 0: only a highlight facing the viewer needs pow.
+    for (size_t j = 0; j < count; ++j) {
+      const double specular = a.specular[j], highlight = a.highlight[j];
+      if (!(a.ndl[j] > 0 && specular > 0 && highlight > 0)) continue;
+      const glm::dvec3 diffuse(a.diffuse[0][j], a.diffuse[1][j], a.diffuse[2][j]);
+      if (!highlight_vanishes(specular, highlight, a.shininess[j], diffuse))
+        a.phong[j] = specular * std::pow(highlight, a.shininess[j]);
+    }
+    lanes.accumulate(scene_.shadow_ambient);
+  }
+  for (size_t i = terms_lit_; i < terms_.size(); ++i) {
+    Radiance& value = terms_[i].value;
+    if (value.point < 0) continue;
+    const glm::dvec3 light = lanes.sum(size_t(value.point));
+    value.known = value.absorbed ? light * value.known : light;
+    value.point = -1;
+  }
+  terms_lit_ = terms_.size();
+  lanes.clear();
+}
+
+Shader::Radiance Shader::shade1(const Ray& ray, int32_t leaving) {
   ++counts_.n[kShade1Ray];
   Hit hit = closest_in_phase(ray, kPhaseSecondaryRays, leaving);
   note(uint32_t(hit.id));
-  if (!hit.found()) return background_radiance(scene_, ray.dir);
-  if (hit.id < 0) return scene_.lights[size_t(-2 - hit.id)].color;
+  if (!hit.found()) return {background_radiance(scene_, ray.dir)};
+  if (hit.id < 0) return {scene_.lights[size_t(-2 - hit.id)].color};
   Surface s = surface_at(ray, hit);
-  glm::dvec3 result = local_light(s, ray.dir);
-  if (s.material->dielectric() && !s.front) result *= glm::exp(-s.material->absorb * s.t);
+  Radiance result = local_light(s, ray.dir);
+  if (s.material->dielectric() && !s.front) {
+    result.known = glm::exp(-s.material->absorb * s.t);
+    result.absorbed = true;
+  }
   return result;
 }
 
-SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool want_path) {
-  // The whole sample counts as shading, less its queries (taken out at the end).
-  const std::array<double, kPhases> before = profile_ ? profile_->ms : std::array<double, kPhases>{};
-  PhaseScope sample(profile_, kPhaseShading);
+void Shader::trace_sample(const Ray& camera_ray, int max_depth, bool want_path) {
+  if (finished_) {
+    results_.clear();
+    finished_ = false;
+  }
+  // The hash records this sample's shadow rays only: the batch's earlier points go first.
+  if (want_path && lanes_->size() > 0) {
+    ShadingTime time(profile_);
+    light_batch();
+  }
+  ShadingTime time(profile_);
   hashing_ = want_path;
   hash_ = 2166136261u;
-  SampleResult result;
-  glm::dvec3 w(1.0), radiance(0.0);
+  SampleResult& result = results_.emplace_back();
+  // A local-light term waits for the batch, unless the hash needs its shadow rays now.
+  auto add_light_term = [&](const glm::dvec3& coef, const Radiance& value) {
+    add_term(coef, value);
+    if (hashing_ && value.point >= 0) light_batch();
+  };
+  glm::dvec3 w(1.0);
   Ray ray = camera_ray;
   int kind = kCameraRay;
   int32_t leaving = kMissId;  // an object the ray cannot meet (left_behind)
@@ -211,12 +270,12 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
     if (depth == 1) result.first_id = hit.id;
     note(uint32_t(hit.id));
     if (!hit.found()) {
-      radiance += w * background_radiance(scene_, ray.dir);
+      add_term(w, {background_radiance(scene_, ray.dir)});
       break;
     }
     if (hit.id < 0) {
       if (depth == 1) note_light_sphere(result, ray, hit);
-      radiance += w * scene_.lights[size_t(-2 - hit.id)].color;
+      add_term(w, {scene_.lights[size_t(-2 - hit.id)].color});
       break;
     }
     Surface s = surface_at(ray, hit);
@@ -230,7 +289,7 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
     if (!m.dielectric()) {
       double F = m.reflect > 0 ? m.reflect + (1 - m.reflect) * pow5(1 - s.cosi) : 0.0;
       double weight = s.alpha * (1 - F);
-      if (weight > 0) radiance += w * weight * local_light(s, ray.dir);
+      if (weight > 0) add_light_term(w * weight, local_light(s, ray.dir));
       if (s.alpha < 1) {
         w *= 1 - s.alpha;
         ray = s.spawn(ray.dir, -1);
@@ -257,18 +316,33 @@ SampleResult Shader::trace_sample(const Ray& camera_ray, int max_depth, bool wan
     const double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
     const double x = n1 <= n2 ? s.cosi : std::sqrt(k);
     const double F = r0 + (1 - r0) * pow5(1 - x);
-    radiance += w * F * shade1(s.spawn(reflect_dir(ray.dir, s.n), +1), left_behind(s));
+    add_light_term(w * F, shade1(s.spawn(reflect_dir(ray.dir, s.n), +1), left_behind(s)));
     w *= 1 - F;
     ray = s.spawn(glm::normalize(eta * ray.dir - (eta * dn + std::sqrt(k)) * s.n), -1);
     kind = kRefractRay;
   }
-  result.radiance = radiance;
+  terms_end_.push_back(terms_.size());
   result.path_hash = (hash_ >> 24) ^ (hash_ & 0xffffffu);  // folded to 24 bits: exact in a float
-  if (profile_) {
-    for (int phase = 0; phase < kPhases; ++phase)
-      if (phase != kPhaseShading) profile_->ms[kPhaseShading] -= profile_->ms[size_t(phase)] - before[size_t(phase)];
+  hashing_ = false;
+}
+
+std::span<const SampleResult> Shader::finish() {
+  if (lanes_->size() > 0) {
+    ShadingTime time(profile_);
+    light_batch();
   }
-  return result;
+  // Each radiance summed term by term, in the order the scalar loop adds them.
+  size_t term = 0;
+  for (size_t i = 0; i < results_.size(); ++i) {
+    glm::dvec3 radiance(0.0);
+    for (; term < terms_end_[i]; ++term) radiance += terms_[term].coef * terms_[term].value.known;
+    results_[i].radiance = radiance;
+  }
+  terms_.clear();
+  terms_end_.clear();
+  terms_lit_ = 0;
+  finished_ = true;
+  return results_;
 }
 
 }  // namespace prism

@@ -179,7 +179,8 @@ consteval uint64_t backend_layout_fingerprint() {
       // The CPU backends' path into the core's renderer (prism/cpu_render.hpp, prism/geometry.hpp).
       PRISM_LAYOUT_TYPE(ObjectQuery), PRISM_LAYOUT_TYPE(Ray), PRISM_LAYOUT_MEMBER(Ray, origin),
       PRISM_LAYOUT_MEMBER(Ray, dir), PRISM_LAYOUT_TYPE(Hit), PRISM_LAYOUT_MEMBER(Hit, t), PRISM_LAYOUT_MEMBER(Hit, id),
-      PRISM_LAYOUT_MEMBER(Hit, prim),
+      PRISM_LAYOUT_MEMBER(Hit, prim), PRISM_LAYOUT_TYPE(RayLanes), PRISM_LAYOUT_MEMBER(RayLanes, origin),
+      PRISM_LAYOUT_MEMBER(RayLanes, dir), PRISM_LAYOUT_MEMBER(RayLanes, tmax), PRISM_LAYOUT_MEMBER(RayLanes, count),
       // The descriptor and probe.
       PRISM_LAYOUT_TYPE(PrismBackendProbe), PRISM_LAYOUT_MEMBER(PrismBackendProbe, usable),
       PRISM_LAYOUT_MEMBER(PrismBackendProbe, reason),

@@ -4,6 +4,7 @@
 // here, once.
 #pragma once
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -19,6 +20,14 @@ struct KnownClear {
   int32_t self = kMissId;
   int32_t tested = kMissId;
   bool has(int32_t id) const { return id == self || id == tested; }
+};
+
+// Rays as structure of arrays: ray j starts at (origin[0][j], origin[1][j],
+// origin[2][j]) and runs along dir (unit length), up to tmax[j].
+struct RayLanes {
+  std::array<const double*, 3> origin{}, dir{};
+  const double* tmax = nullptr;
+  size_t count = 0;
 };
 
 class ObjectQuery {
@@ -45,6 +54,21 @@ class ObjectQuery {
     (void)light;
     (void)clear;
     return occluder(ray, tmax);
+  }
+  // Many shadow rays toward `light` at once: what light_occluder looks up
+  // for a ray before it tests objects, computed for every ray of `rays` (a
+  // backend's own key, into keys[j]; nothing by default), so the lookups run
+  // in the vector unit's lanes. keyed_light_occluder then answers ray j as
+  // light_occluder does.
+  virtual void light_keys(size_t light, const RayLanes& rays, int32_t* keys) const {
+    (void)light;
+    (void)rays;
+    (void)keys;
+  }
+  virtual int32_t keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
+                                       int32_t key) const {
+    (void)key;
+    return light_occluder(light, ray, tmax, clear);
   }
   // True when any object is hit with 0 < t < tmax.
   bool occluded(const Ray& ray, double tmax) const { return occluder(ray, tmax) != kMissId; }
