@@ -51,11 +51,10 @@ void store_pixel(const Frame& f, int i, int j, std::span<const SampleResult> sam
 // once a tile's worth of samples (or one pixel's, at a high spp) is finished.
 static_assert(Shader::kSamplesPerFinish == size_t(kTileSize) * kTileSize);
 
-void render_tile(const Frame& f, int tile, int tiles_x, RayCounts& counts, PhaseProfile* profile) {
+void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader) {
   const PixelRect& r = f.rect;
   const ImageSettings& s = f.settings.image;
   const size_t spp = size_t(s.spp);
-  Shader shader(f.scene, f.query, counts, profile);
   std::vector<glm::ivec2> traced;  // pixels waiting for their samples' light
   auto store_traced = [&] {
     const std::span<const SampleResult> results = shader.finish();
@@ -116,10 +115,11 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   auto run = [&](int begin, int end) {
     RayCounts counts;
     PhaseProfile profile;
+    Shader shader(scene, query, counts, settings.profile ? &profile : nullptr);  // one per range of tiles: its buffers are reused
     for (int tile = begin; tile < end; ++tile) {
       if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
       const uint64_t before = ray_total(counts);
-      render_tile(frame, tile, tiles_x, counts, settings.profile ? &profile : nullptr);
+      render_tile(frame, tile, tiles_x, shader);
       const uint64_t rays = traced += ray_total(counts) - before;
       int finished = ++done;
       report_progress(settings, double(finished) / tiles, rays);

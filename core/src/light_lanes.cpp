@@ -106,9 +106,11 @@ void add_light2(Arrays& a, size_t count, const glm::dvec3& shadow_ambient) { add
 }
 #endif
 
+// The kernels of `width` lanes (0: the widest the processor runs).
 Kernels kernels(int width) {
+  static const int widest = LightLanes::widths().back();
 #if defined(__x86_64__)
-  if (width == 4) return {&light_terms4, &add_light4};
+  if ((width == 0 ? widest : width) == 4) return {&light_terms4, &add_light4};
 #endif
   (void)width;
   return {&light_terms2, &add_light2};
@@ -141,14 +143,8 @@ size_t LightLanes::add(const Point& p, const glm::dvec3& ambient) {
   return j;
 }
 
-void LightLanes::light_terms(const Light& light) {
-  static const int widest = widths().back();
-  kernels(width_ == 0 ? widest : width_).light(a_, size_, light);
-}
+void LightLanes::light_terms(const Light& light) { kernels(width_).light(a_, size_, light); }
 
-void LightLanes::accumulate(const glm::dvec3& shadow_ambient) {
-  static const int widest = widths().back();
-  kernels(width_ == 0 ? widest : width_).add(a_, size_, shadow_ambient);
-}
+void LightLanes::accumulate(const glm::dvec3& shadow_ambient) { kernels(width_).add(a_, size_, shadow_ambient); }
 
 }  // namespace prism
