@@ -23,7 +23,7 @@ namespace prism::embree {
 // What a buffer's lane lookups (cells_of) give a ray besides a cell: the
 // buffer cannot vouch for it (the full query answers it), or the ray can
 // meet no listed object (only the unbounded ones).
-constexpr int32_t kNoCell = -1;
+constexpr int32_t kNoCell = ObjectQuery::kUnkeyed;  // the full query answers
 constexpr int32_t kNoCandidates = -2;
 
 // A world-space sphere that holds object `id`.

@@ -1,5 +1,6 @@
 #include "prism/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace prism {
@@ -18,10 +19,17 @@ CameraRays::CameraRays(const Camera& camera, int width, int height)
       tan_half_(std::tan(glm::radians(camera.fov_y) * 0.5)),
       aspect_(static_cast<double>(width) / height) {}
 
-Ray CameraRays::operator()(int i, int j, glm::dvec2 offset) const {
-  double u = ((i + offset.x) / width_ * 2.0 - 1.0) * tan_half_ * aspect_;
-  double v = (1.0 - (j + offset.y) / height_ * 2.0) * tan_half_;
-  return {camera_.position, glm::normalize(camera_.forward + u * camera_.right + v * camera_.up)};
+CameraRays::Cone CameraRays::cone(int x0, int y0, int x1, int y1) const {
+  // forward + u right + v up is affine in (u, v), so every ray through the
+  // rectangle is a positive combination of the rays through its corners;
+  // a circular cone of half-angle up to 90 degrees is convex, so one that
+  // holds the corner rays holds them all.
+  const glm::dvec3 corners[4] = {(*this)(x0, y0, {0, 0}).dir, (*this)(x1 - 1, y0, {1, 0}).dir,
+                                 (*this)(x0, y1 - 1, {0, 1}).dir, (*this)(x1 - 1, y1 - 1, {1, 1}).dir};
+  const glm::dvec3 axis = glm::normalize(corners[0] + corners[1] + corners[2] + corners[3]);
+  double cos_half = 1.0;
+  for (const glm::dvec3& corner : corners) cos_half = std::min(cos_half, glm::dot(axis, corner));
+  return {axis, cos_half - 1e-9};
 }
 
 Ray camera_ray(const Camera& camera, int width, int height, int i, int j, glm::dvec2 offset) {

@@ -66,6 +66,9 @@ class Shader {
   ~Shader();
   Shader(const Shader&) = delete;
   Shader& operator=(const Shader&) = delete;
+  // The camera rays traced until the next call lie in `cone` from `eye`:
+  // the light spheres none of them can meet are not tested for them.
+  void set_camera_cone(const glm::dvec3& eye, const glm::dvec3& axis, double cos_half);
   // Traces one camera sample; its result is among finish()'s.
   void trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
   // Completes every sample traced since the last finish() and returns their
@@ -89,16 +92,37 @@ class Shader {
     Radiance value;
   };
   Surface surface_at(const Ray& ray, const Hit& hit) const;
-  Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin) const;
+  Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const;
   // The closest hit of a camera ray (kPhaseCameraRays) or of a secondary one.
   // `leaving`: an object a secondary ray cannot meet (left_behind), or kMissId.
   Hit closest_in_phase(const Ray& ray, Phase phase, int32_t leaving) const;
   int32_t left_behind(const Surface& s) const;
   void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
-  // The local light at s seen along dir: a point of the batch.
-  Radiance local_light(const Surface& s, const glm::dvec3& dir);
-  Radiance shade1(const Ray& ray, int32_t leaving);
-  void add_term(const glm::dvec3& coef, const Radiance& value) { terms_.push_back({coef, value}); }
+  // The local light at s seen along dir: a point of the batch (its index).
+  int32_t local_light(const Surface& s, const glm::dvec3& dir);
+  // Adds coef x the radiance a Shade1 ray brings back.
+  void shade1(const Ray& ray, int32_t leaving, const glm::dvec3& coef);
+  // The terms are written field by field into their element, never built
+  // whole on the stack and copied: such a copy's 16-byte loads straddle the
+  // fields' 8-, 4- and 1-byte stores and wait for them to retire (a
+  // store-forwarding stall, ~2 % of a showcase frame by perf).
+  void add_known_term(const glm::dvec3& coef, const glm::dvec3& known) {
+    Term& term = terms_.emplace_back();
+    term.coef = coef;
+    term.value.known = known;
+  }
+  // coef x batch point `point`'s light, times `absorption` where given. The
+  // light is computed at once when the path hash needs its shadow rays now.
+  void add_point_term(const glm::dvec3& coef, int32_t point, const glm::dvec3* absorption = nullptr) {
+    Term& term = terms_.emplace_back();
+    term.coef = coef;
+    term.value.point = point;
+    if (absorption) {
+      term.value.known = *absorption;
+      term.value.absorbed = true;
+    }
+    if (hashing_) light_batch();
+  }
   // Computes the batch's lights and puts them into the terms that wait for them.
   void light_batch();
   // Whether an object blocks `ray` before `distance`; `self`: an object it
@@ -114,6 +138,7 @@ class Shader {
   bool hashing_ = false;
   uint32_t hash_ = 0;
   std::vector<uint32_t> sphere_lights_;  // the lights whose sphere rays can meet
+  std::vector<uint32_t> camera_sphere_lights_;  // those the camera rays can meet (set_camera_cone)
   std::vector<int32_t> last_blocker_;  // per light: the object that blocked its last shadow ray
   std::unique_ptr<LightLanes> lanes_;  // the shading points waiting for their light
   std::vector<SampleResult> results_;  // the samples traced since the last finish()

@@ -37,21 +37,53 @@ int wrap_next(int /*i*/, int at, int n) { return at + 1 == n ? 0 : at + 1; }
 int clamp_index(int i, int n) { return std::clamp(i, 0, n - 1); }
 int clamp_next(int i, int /*at*/, int n) { return clamp_index(i + 1, n); }
 
-glm::dvec4 texel(const Texture& t, int x, int y) { return glm::dvec4(t.texels[size_t(y) * t.width + x]); }
+// A texture's texels as the sampler reads them: the float texels, or their
+// codes and the codes' values (Texture::codes), which give the same bits.
+class FloatTexels {
+ public:
+  explicit FloatTexels(const Texture& t) : texels_(t.texels.data()), width_(size_t(t.width)) {}
+  [[gnu::always_inline]] glm::dvec4 operator()(int x, int y) const { return glm::dvec4(texels_[size_t(y) * width_ + size_t(x)]); }
+
+ private:
+  const glm::vec4* texels_;
+  size_t width_;
+};
+
+class CodedTexels {
+ public:
+  explicit CodedTexels(const Texture& t)
+      : codes_(t.codes.data()), colour_(t.code_values.data()), alpha_(colour_ + 256), width_(size_t(t.width)) {}
+  [[gnu::always_inline]] glm::dvec4 operator()(int x, int y) const {  // four per lookup: a call each cost ~10 %
+    const uint32_t c = codes_[size_t(y) * width_ + size_t(x)];
+    return {colour_[c & 0xffu], colour_[(c >> 8) & 0xffu], colour_[(c >> 16) & 0xffu], alpha_[c >> 24]};
+  }
+
+ private:
+  const uint32_t* codes_;
+  const double* colour_;
+  const double* alpha_;
+  size_t width_;
+};
 
 // Bilinear blend of the four texels around (x, y) in texel space; `index`
 // maps an integer coordinate and the size to a texel row/column, and
 // next(i, index(i, n), n) gives index(i + 1, n).
-template <int (*index)(int, int), int (*next)(int, int, int)>
-glm::dvec4 bilinear(const Texture& t, double x, double y) {
+template <int (*index)(int, int), int (*next)(int, int, int), typename Texels>
+glm::dvec4 bilinear_of(const Texture& t, double x, double y) {
+  const Texels texel(t);
   double fx0 = std::floor(x), fy0 = std::floor(y);
   double fx = x - fx0, fy = y - fy0;
   int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
   int xa = index(x0, t.width), xb = next(x0, xa, t.width);
   int ya = index(y0, t.height), yb = next(y0, ya, t.height);
-  glm::dvec4 top = texel(t, xa, ya) * (1 - fx) + texel(t, xb, ya) * fx;
-  glm::dvec4 bottom = texel(t, xa, yb) * (1 - fx) + texel(t, xb, yb) * fx;
+  glm::dvec4 top = texel(xa, ya) * (1 - fx) + texel(xb, ya) * fx;
+  glm::dvec4 bottom = texel(xa, yb) * (1 - fx) + texel(xb, yb) * fx;
   return top * (1 - fy) + bottom * fy;
+}
+
+template <int (*index)(int, int), int (*next)(int, int, int)>
+glm::dvec4 bilinear(const Texture& t, double x, double y) {
+  return t.codes.empty() ? bilinear_of<index, next, FloatTexels>(t, x, y) : bilinear_of<index, next, CodedTexels>(t, x, y);
 }
 
 glm::vec4 expand_channels(const float* p, int channels) {
@@ -162,7 +194,11 @@ class TexelDecoder {
     const bool integer_format = header.format == PixelFormat::UInt8 || header.format == PixelFormat::UInt16;
     finite_check_ = !integer_format;
     if (srgb_ && integer_format) build_srgb_table(header.format == PixelFormat::UInt8 ? 255 : 65535);
-    if (header.format == PixelFormat::UInt8) build_code_values();
+    if (header.format == PixelFormat::UInt8) {
+      build_code_values();
+      coded_ = true;
+      codes_.reserve(size_t(header.width) * size_t(header.height));
+    }
     texture_.texels.reserve(size_t(header.width) * size_t(header.height));
   }
 
@@ -188,9 +224,26 @@ class TexelDecoder {
       if (finite_check_) refuse_non_finite(x, y, p);
       texture_.texels.push_back(expand_channels(p, channels_));
     }
+    if (coded_) {
+      for (int x = 0; x < texture_.width; ++x) {
+        unsigned char codes[4];
+        for (int c = 0; c < channels_; ++c) {
+          const float code = std::round(values[size_t(x) * size_t(channels_) + size_t(c)] * 255.0f);
+          codes[c] = code >= 0.0f && code <= 255.0f ? static_cast<unsigned char>(code) : 0;  // a mismatch is caught in take()
+        }
+        codes_.push_back(code_word(codes, channels_));
+      }
+    }
   }
 
-  Texture take() { return std::move(texture_); }
+  // The texture, with its codes where they give every texel bit for bit.
+  Texture take() {
+    if (coded_ && codes_give_the_texels()) {
+      texture_.codes = std::move(codes_);
+      texture_.code_values.assign(&code_values_[0][0], &code_values_[0][0] + 512);
+    }
+    return std::move(texture_);
+  }
 
  private:
   template <int kChannels>
@@ -200,7 +253,30 @@ class TexelDecoder {
       float p[4];
       for (int c = 0; c < kChannels; ++c) p[c] = code_values_[c < kColourChannels ? 0 : 1][codes[size_t(x) * kChannels + size_t(c)]];
       texture_.texels.push_back(expand_channels(p, kChannels));
+      codes_.push_back(code_word(codes + size_t(x) * kChannels, kChannels));
     }
+  }
+
+  // One texel's codes as expand_channels spreads its channels over R, G, B, A
+  // (an opaque texel's alpha: code 255, whose value is 1).
+  static uint32_t code_word(const unsigned char* codes, int channels) {
+    uint32_t r = codes[0], g = codes[0], b = codes[0], a = 255;
+    if (channels == 2) a = codes[1];
+    if (channels >= 3) g = codes[1], b = codes[2];
+    if (channels == 4) a = codes[3];
+    return r | (g << 8) | (b << 16) | (a << 24);
+  }
+
+  bool codes_give_the_texels() const {
+    if (codes_.size() != texture_.texels.size()) return false;
+    for (size_t i = 0; i < codes_.size(); ++i) {
+      const glm::vec4& texel = texture_.texels[i];
+      for (int c = 0; c < 4; ++c) {
+        const float value = code_values_[c == 3 ? 1 : 0][(codes_[i] >> (8 * c)) & 0xffu];
+        if (std::bit_cast<uint32_t>(value) != std::bit_cast<uint32_t>(texel[c])) return false;
+      }
+    }
+    return true;
   }
 
   void build_code_values() {
@@ -238,6 +314,8 @@ class TexelDecoder {
   float max_code_ = 0;
   std::vector<float> srgb_table_;
   float code_values_[2][256] = {};  // 8-bit files: [0] colour channels, [1] alpha
+  bool coded_ = false;              // an 8-bit file: its codes are kept
+  std::vector<uint32_t> codes_;
 };
 
 Texture decode_texture(const std::filesystem::path& path, bool srgb, size_t max_pixels) {

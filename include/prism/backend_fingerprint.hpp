@@ -121,6 +121,7 @@ consteval uint64_t backend_layout_fingerprint() {
       // The scene model (prism/scene.hpp).
       PRISM_LAYOUT_TYPE(Texture), PRISM_LAYOUT_MEMBER(Texture, name), PRISM_LAYOUT_MEMBER(Texture, path),
       PRISM_LAYOUT_MEMBER(Texture, width), PRISM_LAYOUT_MEMBER(Texture, height), PRISM_LAYOUT_MEMBER(Texture, texels),
+      PRISM_LAYOUT_MEMBER(Texture, codes), PRISM_LAYOUT_MEMBER(Texture, code_values),
       PRISM_LAYOUT_TYPE(Material), PRISM_LAYOUT_MEMBER(Material, name), PRISM_LAYOUT_MEMBER(Material, color),
       PRISM_LAYOUT_MEMBER(Material, texture), PRISM_LAYOUT_MEMBER(Material, uv_scale),
       PRISM_LAYOUT_MEMBER(Material, uv_offset), PRISM_LAYOUT_MEMBER(Material, diffuse),

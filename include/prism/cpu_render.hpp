@@ -4,6 +4,7 @@
 // here, once.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <span>
 #include <vector>
@@ -57,13 +58,15 @@ class ObjectQuery {
   }
   // Many shadow rays toward `light` at once: what light_occluder looks up
   // for a ray before it tests objects, computed for every ray of `rays` (a
-  // backend's own key, into keys[j]; nothing by default), so the lookups run
-  // in the vector unit's lanes. keyed_light_occluder then answers ray j as
-  // light_occluder does.
+  // backend's own key, into keys[j]; kUnkeyed by default), so the lookups
+  // run in the vector unit's lanes. keyed_light_occluder then answers ray j
+  // as light_occluder does. kUnkeyed says the query has nothing cheaper for
+  // the ray than its full search: the caller may then try a likely blocker
+  // of its own first.
+  static constexpr int32_t kUnkeyed = -1;
   virtual void light_keys(size_t light, const RayLanes& rays, int32_t* keys) const {
     (void)light;
-    (void)rays;
-    (void)keys;
+    std::fill_n(keys, rays.count, kUnkeyed);
   }
   virtual int32_t keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
                                        int32_t key) const {

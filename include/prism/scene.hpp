@@ -24,6 +24,16 @@ struct Texture {
   int width = 0;
   int height = 0;
   std::vector<glm::vec4> texels;  // width * height
+  // The same texels a quarter the size, where each channel takes one of 256
+  // values (8-bit files): R, G, B and A codes from the low byte up, and each
+  // code's value, colour codes' first (256), then alpha's (256), so that
+  // texels[i][c] == code_values[(c == 3 ? 256 : 0) + code c of codes[i]]
+  // for every texel, bit for bit. The CPU sampler reads these when present:
+  // a scene's textures then stay in a core's second-level cache. Empty for
+  // other files and for textures built by hand; code that changes texels
+  // clears them.
+  std::vector<uint32_t> codes;
+  std::vector<double> code_values;
 };
 
 struct Material {

@@ -1,10 +1,13 @@
 // A scene's textures: headers and the pixel budget before any decoding, one
 // decoding per distinct file, the stop request inside decoding, and texels
-// that must be finite.
+// that must be finite, and the codes an 8-bit file's texels keep.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <csignal>
+#include <cstdint>
 #include <limits>
+#include <random>
 
 #include "prism/cancel.hpp"
 #include "prism/errors.hpp"
@@ -128,6 +131,58 @@ TEST_F(TextureFiles, NonFiniteTexelsAreRefusedNamingTheTextureAndThePixel) {
   EXPECT_EQ(error_of([&] { load(scene_with_textures(R"({"t": "inf.exr"})")); }),
             "scene.json: textures.t: '" + (dir_ / "inf.exr").string() +
                 "': texel (0, 0) channel B is -Inf; texture values must be finite");
+}
+
+// An 8-bit file's texels keep their codes (Texture::codes): the byte the
+// file holds per channel, a grey file's in R, G and B, 255 in A where the
+// file has no alpha, and each code's value the texel's float bit for bit.
+// The sampler reads them in place of the floats and gives the same bits at
+// every lookup (a texture without its codes samples the floats). A 16-bit
+// file keeps no codes.
+TEST_F(TextureFiles, EightBitFilesKeepTheirCodesBitForBit) {
+  const int w = 7, h = 5;
+  auto code_at = [](int x, int y, int c) { return (x * 37 + y * 11 + c * 53) % 256; };
+  auto bits = [](double v) { return std::bit_cast<uint64_t>(v); };
+  for (const int channels : {1, 2, 3, 4}) {
+    std::vector<float> values;
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < channels; ++c) values.push_back(float(code_at(x, y, c)) / 255.0f);
+    const fs::path file = dir_ / ("codes" + std::to_string(channels) + ".png");
+    write_image_file(file, ImageFile{w, h, channels, {}, PixelFormat::UInt8, values}, PixelFormat::UInt8);
+    for (const bool srgb : {true, false}) {
+      SCOPED_TRACE(std::to_string(channels) + " channels, srgb " + std::to_string(srgb));
+      const Texture texture = load_texture(file, srgb);
+      ASSERT_EQ(texture.codes.size(), size_t(w * h));
+      ASSERT_EQ(texture.code_values.size(), 512u);
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          const size_t i = size_t(y * w + x);
+          const bool grey = channels <= 2, alpha = channels == 2 || channels == 4;
+          const int expected[4] = {code_at(x, y, 0), code_at(x, y, grey ? 0 : 1), code_at(x, y, grey ? 0 : 2),
+                                   alpha ? code_at(x, y, channels - 1) : 255};
+          for (int c = 0; c < 4; ++c) {
+            const int code = int((texture.codes[i] >> (8 * c)) & 0xffu);
+            EXPECT_EQ(code, expected[c]) << "texel (" << x << ", " << y << ") channel " << c;
+            EXPECT_EQ(bits(texture.code_values[size_t((c == 3 ? 256 : 0) + code)]), bits(double(texture.texels[i][c])));
+          }
+        }
+      }
+      Texture floats = texture;
+      floats.codes.clear();
+      floats.code_values.clear();
+      std::mt19937_64 random(5);
+      std::uniform_real_distribution<double> coordinate(-2.5, 2.5);
+      for (int k = 0; k < 500; ++k) {
+        const glm::dvec2 uv(coordinate(random), coordinate(random));
+        const glm::dvec4 coded = sample_texture(texture, uv), plain = sample_texture(floats, uv);
+        for (int c = 0; c < 4; ++c) ASSERT_EQ(bits(coded[c]), bits(plain[c])) << "uv (" << uv.x << ", " << uv.y << ")";
+      }
+    }
+  }
+  const fs::path wide = dir_ / "wide.png";
+  write_image_file(wide, ImageFile{2, 2, 3, {}, PixelFormat::UInt16, std::vector<float>(12, 0.25f)}, PixelFormat::UInt16);
+  EXPECT_TRUE(load_texture(wide, true).codes.empty());
 }
 
 }  // namespace

@@ -16,8 +16,23 @@ glm::dvec2 sample_offset(int k);
 class CameraRays {
  public:
   CameraRays(const Camera& camera, int width, int height);
-  // The ray through pixel (i, j) at offset `offset` within it.
-  Ray operator()(int i, int j, glm::dvec2 offset) const;
+  // A cone from the camera's position that holds every ray through the
+  // pixels [x0, x1) x [y0, y1), at any offsets: its unit axis and the
+  // cosine of its half-angle (made a little wider than the corner rays
+  // need, for their rounding).
+  struct Cone {
+    glm::dvec3 axis;
+    double cos_half;
+  };
+  Cone cone(int x0, int y0, int x1, int y1) const;
+  const glm::dvec3& position() const { return camera_.position; }
+  // The ray through pixel (i, j) at offset `offset` within it. Inline: a
+  // frame makes one per camera sample, in a loop of its own (render_cpu).
+  Ray operator()(int i, int j, glm::dvec2 offset) const {
+    double u = ((i + offset.x) / width_ * 2.0 - 1.0) * tan_half_ * aspect_;
+    double v = (1.0 - (j + offset.y) / height_ * 2.0) * tan_half_;
+    return {camera_.position, glm::normalize(camera_.forward + u * camera_.right + v * camera_.up)};
+  }
 
  private:
   Camera camera_;

@@ -25,7 +25,8 @@ constexpr std::uintmax_t kMaxSceneFileBytes = std::uintmax_t(64) << 20;
 constexpr size_t kMaxJsonDepth = 64;
 
 // All textures of one scene together (cube-map faces included) hold at most
-// this many pixels: 4 GiB of RGBA float texels. Each file's size is checked
+// this many pixels: 4 GiB of RGBA float texels (and 1 GiB of codes beside
+// them where the files are 8-bit: Texture::codes). Each file's size is checked
 // from its header before any pixel is allocated.
 constexpr size_t kMaxTexturePixels = size_t(1) << 28;
 

@@ -1,0 +1,67 @@
+// The camera's cone over a tile of pixels (CameraRays::cone), which lets the
+// shading skip the light spheres no camera ray of a tile can meet.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "prism/camera.hpp"
+
+namespace prism {
+namespace {
+
+Camera camera_looking_along(const glm::dvec3& forward, const glm::dvec3& up, double fov_y) {
+  Camera camera;
+  camera.position = {1.5, -2.0, 3.25};
+  camera.forward = glm::normalize(forward);
+  camera.right = glm::normalize(glm::cross(camera.forward, up));
+  camera.up = glm::cross(camera.right, camera.forward);
+  camera.fov_y = fov_y;
+  return camera;
+}
+
+// One pixel under a 90-degree field of view: it spans u, v in [-1, 1], so
+// its corner rays are (+-1, +-1, forward), at cos = 1 / sqrt(3) from the
+// axis, which is the forward direction; the cone is widened by 1e-9 in
+// the cosine for rounding.
+TEST(CameraRays, TheConeOfASquarePixelUnderNinetyDegreesIsHandWorked) {
+  const Camera camera = camera_looking_along({0, 0, -1}, {0, 1, 0}, 90.0);
+  const CameraRays::Cone cone = CameraRays(camera, 1, 1).cone(0, 0, 1, 1);
+  EXPECT_NEAR(cone.axis.x, 0.0, 1e-15);
+  EXPECT_NEAR(cone.axis.y, 0.0, 1e-15);
+  EXPECT_NEAR(cone.axis.z, -1.0, 1e-15);
+  EXPECT_NEAR(cone.cos_half, 0.57735026918962576 - 1e-9, 1e-15);
+}
+
+// Every ray through a tile, at any offset in its pixels, lies in the tile's
+// cone: tiles at the centre, the edges and the corners of the image, for a
+// narrow, an ordinary and a wide field of view and a tilted camera.
+TEST(CameraRays, ATilesConeHoldsEveryRayThroughIt) {
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> offset(0.0, std::nextafter(1.0, 0.0));
+  const int width = 97, height = 61, tile = 16;
+  for (const double fov : {1.0, 42.0, 150.0}) {
+    const Camera camera = camera_looking_along({0.3, -0.4, -1.0}, {0.1, 1.0, 0.05}, fov);
+    const CameraRays rays(camera, width, height);
+    for (int y0 = 0; y0 < height; y0 += tile) {
+      for (int x0 = 0; x0 < width; x0 += tile) {
+        const int x1 = std::min(x0 + tile, width), y1 = std::min(y0 + tile, height);
+        const CameraRays::Cone cone = rays.cone(x0, y0, x1, y1);
+        EXPECT_NEAR(glm::length(cone.axis), 1.0, 1e-15);
+        for (int y = y0; y < y1; ++y) {
+          for (int x = x0; x < x1; ++x) {
+            for (const glm::dvec2 at : {glm::dvec2(0, 0), glm::dvec2(offset.max(), offset.max()),
+                                        glm::dvec2(offset(random), offset(random))}) {
+              const Ray ray = rays(x, y, at);
+              ASSERT_GE(glm::dot(cone.axis, ray.dir), cone.cos_half)
+                  << "fov " << fov << ", pixel (" << x << ", " << y << ") of the tile at (" << x0 << ", " << y0 << ")";
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace prism
