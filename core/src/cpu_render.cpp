@@ -62,39 +62,43 @@ void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vec
   const PixelRect& r = f.rect;
   const ImageSettings& s = f.settings.image;
   const size_t spp = size_t(s.spp);
-  std::vector<glm::ivec2> traced;  // pixels waiting for their samples' light
-  auto store_traced = [&] {
-    const std::span<const SampleResult> results = shader.finish();
-    for (size_t p = 0; p < traced.size(); ++p) store_pixel(f, traced[p].x, traced[p].y, results.subspan(p * spp, spp));
-    traced.clear();
-  };
   const int x0 = r.x + (tile % tiles_x) * kTileSize, y0 = r.y + (tile / tiles_x) * kTileSize;
   const int x1 = std::min(x0 + kTileSize, r.x + r.width), y1 = std::min(y0 + kTileSize, r.y + r.height);
   // Pixel by pixel in rows, each pixel's samples in order.
   struct Cursor {
     int i, j, k;
   };
-  auto next = [&](Cursor& c) {
+  auto next_pixel = [&](Cursor& c) {
+    if (++c.i == x1) c = {x0, c.j + 1, 0};
+  };
+  auto next_sample = [&](Cursor& c) {
     if (++c.k < s.spp) return;
     c.k = 0;
-    if (++c.i == x1) c = {x0, c.j + 1, 0};
+    next_pixel(c);
+  };
+  // The pixels traced since the last finish(), from `stored` on, are stored
+  // once their samples' light is complete.
+  Cursor stored{x0, y0, 0};
+  size_t waiting = 0;
+  auto store_traced = [&] {
+    const std::span<const SampleResult> results = shader.finish();
+    for (size_t p = 0; p < waiting; ++p, next_pixel(stored)) store_pixel(f, stored.i, stored.j, results.subspan(p * spp, spp));
+    waiting = 0;
   };
   const CameraRays::Cone cone = f.camera_rays.cone(x0, y0, x1, y1);
   shader.set_camera_cone(f.camera_rays.position(), cone.axis, cone.cos_half);
   const size_t samples = size_t(x1 - x0) * size_t(y1 - y0) * spp;
-  Cursor made{x0, y0, 0}, traced_to{x0, y0, 0};
+  Cursor made{x0, y0, 0}, traced{x0, y0, 0};
   for (size_t first = 0; first < samples; first += kRaysMadeAhead) {
     const size_t n = std::min(kRaysMadeAhead, samples - first);
-    for (size_t q = 0; q < n; ++q, next(made)) rays[q] = f.camera_rays(made.i, made.j, sample_offset(made.k));
-    for (size_t q = 0; q < n; ++q, next(traced_to)) {
-      const Cursor c = traced_to;
-      shader.trace_sample(rays[q], s.max_depth, c.k == 0 && f.settings.aov_path);
-      if (c.k + 1 < s.spp) continue;
-      traced.emplace_back(c.i, c.j);
-      if ((traced.size() + 1) * spp > Shader::kSamplesPerFinish) store_traced();
+    for (size_t q = 0; q < n; ++q, next_sample(made)) rays[q] = f.camera_rays(made.i, made.j, sample_offset(made.k));
+    for (size_t q = 0; q < n; ++q, next_sample(traced)) {
+      shader.trace_sample(rays[q], s.max_depth, traced.k == 0 && f.settings.aov_path);
+      if (traced.k + 1 < s.spp) continue;
+      if ((++waiting + 1) * spp > Shader::kSamplesPerFinish) store_traced();
     }
   }
-  if (!traced.empty()) store_traced();
+  if (waiting > 0) store_traced();
 }
 
 uint64_t ray_total(const RayCounts& counts) {
