@@ -50,8 +50,8 @@ struct PacketBounds {
   double tmax[kLanes] = {};
 };
 
-// Random lanes, and bounds that cut some hits: tmax at, just below, or past
-// a scalar hit, tmin 0 or a little more.
+// Random lanes, and bounds that cut some hits: tmax at, just below, just
+// above, or past a scalar hit, tmin 0 or a little more.
 PacketBounds random_bounds(const Object& object, const Ray* rays, unsigned count, std::mt19937_64& rng) {
   PacketBounds b;
   const uint32_t all = count >= 32 ? ~0u : (1u << count) - 1u;
@@ -60,9 +60,10 @@ PacketBounds random_bounds(const Object& object, const Ray* rays, unsigned count
     b.tmin[i] = rng() % 4 == 0 ? 1e-3 : 0.0;
     PrismHit hit;
     const bool hits = intersect_object(object, rays[i], b.tmin[i], kInfinity, hit);
-    switch (rng() % 3) {
+    switch (rng() % 4) {
       case 0: b.tmax[i] = kInfinity; break;
       case 1: b.tmax[i] = hits ? hit.t : 10.0; break;
+      case 2: b.tmax[i] = hits ? std::nextafter(hit.t, kInfinity) : 0.5; break;
       default: b.tmax[i] = hits ? std::nextafter(hit.t, 0.0) : 1.0; break;
     }
   }
@@ -85,10 +86,17 @@ void check_packet(const Object& object, const Ray* rays, unsigned count, std::mt
     const bool scalar_found = intersect_object(object, rays[i], b.tmin[i], b.tmax[i], hit);
     const bool packet_found = (found >> i & 1u) != 0;
     const bool closest_ok = scalar_found == packet_found && (!scalar_found || same_hit(hit, hits[i]));
-    const bool occluded_ok = blocks(object, rays[i], b.tmax[i]) == ((blocked >> i & 1u) != 0);
-    if (closest_ok && occluded_ok) continue;
-    if (out.mismatches++ == 0)
-      out.first = describe(closest_ok ? "occluded_packet" : "intersect_packet", rays[i], b.tmin[i], b.tmax[i]);
+    // The occlusion entries against intersect's hit below tmax: `occluded`
+    // with the lane's bounds, the packet's with tmin 0 (blocks_packet).
+    const PrismRay local = to_local(object, rays[i]);
+    const bool scalar_occluded = object.desc->occluded(object.record(), &local, b.tmin[i], b.tmax[i]) != 0;
+    PrismHit from_zero;
+    const bool blocked_from_zero = intersect_object(object, rays[i], 0.0, b.tmax[i], from_zero) && from_zero.t < b.tmax[i];
+    const bool occluded_ok = scalar_occluded == (scalar_found && hit.t < b.tmax[i]);
+    const bool packet_occluded_ok = ((blocked >> i & 1u) != 0) == blocked_from_zero;
+    if (closest_ok && occluded_ok && packet_occluded_ok) continue;
+    const char* which = !closest_ok ? "intersect_packet" : !occluded_ok ? "occluded" : "occluded_packet";
+    if (out.mismatches++ == 0) out.first = describe(which, rays[i], b.tmin[i], b.tmax[i]);
   }
 }
 

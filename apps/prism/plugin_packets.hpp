@@ -1,7 +1,7 @@
 // The entries of a primitive plugin beside its scalar `intersect`, for
 // `prism plugin check` and the tests that run it on every plugin built: the
-// packet entries (intersect_packet, occluded_packet) lane by lane, bit for
-// bit; the float entry (intersect_float) measured against it; `surface`
+// packet entries (intersect_packet, occluded_packet) and the occlusion test
+// (occluded) lane by lane, bit for bit; the float entry (intersect_float) measured against it; `surface`
 // without uv against `surface`, bit for bit.
 #pragma once
 

@@ -160,7 +160,7 @@ glm::dvec4 grown_bound(const BoundSphere& s, double pad) { return {s.center, s.r
 // 1e-14 relative for the rounding of those dot products (d is unit up to a
 // few ulps). A shadow ray's candidates mostly fail here at ~20
 // instructions, against ~100 for a plugin call.
-bool misses_bound(const Ray& ray, double tmax, const glm::dvec4& bound) {
+[[gnu::always_inline]] inline bool misses_bound(const Ray& ray, double tmax, const glm::dvec4& bound) {
   const glm::dvec3 v = glm::dvec3(bound) - ray.origin;
   const double vv = glm::dot(v, v), tc = glm::dot(v, ray.dir), r = bound.w;
   const double slack = 1e-14 * (std::abs(tc) + tmax);
@@ -544,6 +544,84 @@ Hit EmbreeQuery::camera_closest(const Ray& ray) const {
   return ctx.best;
 }
 
+namespace {
+
+// consider() for the rays of a batch, in packets: rays[j] tries `object`
+// with tmin 0 and tmax its best t so far, after `bound` (when given) fails
+// to rule it out, and takes the hit on the same terms. Each ray meets the
+// objects in the order camera_closest gives them, with the same bounds, so
+// every plugin answer, and so every best hit, is the one it gives.
+void consider_packets(const Object& object, int32_t id, const glm::dvec4* bound, std::span<const Ray> rays,
+                      Hit* hits) {
+  constexpr size_t kLanes = PRISM_PACKET_SIZE;
+  for (size_t base = 0; base < rays.size(); base += kLanes) {
+    const size_t lanes = std::min(kLanes, rays.size() - base);
+    std::array<double, kLanes> tmin{}, tmax;
+    uint32_t active = 0;
+    for (size_t i = 0; i < lanes; ++i) {
+      tmax[i] = hits[base + i].t;
+      if (!bound || !misses_bound(rays[base + i], tmax[i], *bound)) active |= 1u << i;
+    }
+    if (active == 0) continue;
+    std::array<PrismHit, kLanes> found;
+    const uint32_t hit = intersect_object_packet(object, rays.data() + base, active, tmin.data(), tmax.data(), found.data());
+    for (uint32_t left = hit & active; left != 0; left &= left - 1) {
+      const size_t i = size_t(std::countr_zero(left));
+      const double t = found[i].t;
+      // The plugin's word is checked, as intersect_object checks it.
+      if (!(t > 0.0 && t <= tmax[i]) || t == kInfinity) [[unlikely]] {
+        reject_hit(object, t, 0.0, tmax[i]);
+        continue;
+      }
+      Hit& best = hits[base + i];
+      if (t == best.t && id > best.id) continue;
+      best.t = t;
+      best.id = id;
+      best.prim = found[i];
+    }
+  }
+}
+
+// The cone around the unit directions of `rays` (all from one point): the
+// normalised sum as axis and the smallest cosine to it. A NaN axis (rays in
+// opposite directions) makes the cosine NaN, which cone_candidates takes as
+// every direction.
+void cone_of(std::span<const Ray> rays, glm::dvec3& axis, double& cos_half) {
+  glm::dvec3 sum(0);
+  for (const Ray& ray : rays) sum += ray.dir;
+  axis = sum / glm::length(sum);
+  cos_half = 1;
+  for (const Ray& ray : rays) cos_half = std::min(cos_half, glm::dot(axis, ray.dir));
+  if (std::isnan(axis.x + axis.y + axis.z)) cos_half = std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+// The answers of camera_closest, ray by ray: every ray of the batch starts
+// at the eye, so the objects its cell lists are among those whose spheres
+// the batch's cone meets (a ray that meets a sphere points into the
+// sphere's cone, and lies in the batch's), and a listed object its cell
+// leaves out is one the ray cannot hit, whose plugin answers no hit. Each
+// ray meets the unbounded objects, then the listed ones, in ascending ids
+// and behind the same bounding-sphere test, as in camera_closest.
+void EmbreeQuery::camera_closest_batch(std::span<const Ray> rays, Hit* hits) const {
+  const bool buffered = views_ && views_->camera && std::ranges::all_of(rays, [&](const Ray& ray) {
+    return ray.origin == views_->eye && std::isfinite(max_abs(ray.dir));
+  });
+  if (!buffered || rays.empty()) return ObjectQuery::camera_closest_batch(rays, hits);
+  std::fill_n(hits, rays.size(), Hit{});
+  for (int32_t id : views_->unbounded) consider_packets(scene_.objects[id], id, nullptr, rays, hits);
+  glm::dvec3 axis;
+  double cos_half;
+  cone_of(rays, axis, cos_half);
+  std::array<int32_t, kMaxViewObjects> listed;
+  const size_t count = views_->camera->cone_candidates(axis, cos_half, listed.data());
+  for (size_t k = 0; k < count; ++k) {
+    const int32_t id = listed[k];
+    consider_packets(scene_.objects[id], id, &views_->bound_of[size_t(id)], rays, hits);
+  }
+}
+
 void EmbreeQuery::light_keys(size_t light, const RayLanes& rays, int32_t* keys) const {
   // The buffers' cells (embree_view_buffers.hpp); kNoCell where no buffer applies.
   if (views_ && light < views_->lights.size()) {
@@ -553,19 +631,47 @@ void EmbreeQuery::light_keys(size_t light, const RayLanes& rays, int32_t* keys) 
   std::fill_n(keys, rays.count, kNoCell);
 }
 
-int32_t EmbreeQuery::keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
-                                          int32_t key) const {
-  if (key == kNoCell) return occluder(ray, tmax);
-  if (!(tmax > 0.0)) return kMissId;
+[[gnu::always_inline]] inline std::span<const int32_t> EmbreeQuery::light_cell(size_t light, int32_t key) const {
+  if (key == kNoCandidates) return {};
+  const auto& point = views_->points[light];
+  return point ? point->cell(key) : views_->parallels[light]->cell(key);
+}
+
+// The unbounded objects, then the cell's list: the first that blocks the ray.
+[[gnu::always_inline]] inline int32_t EmbreeQuery::cell_occluder(std::span<const int32_t> cell, const Ray& ray,
+                                                                 double tmax, KnownClear clear) const {
   for (int32_t id : views_->unbounded)
     if (!clear.has(id) && blocks(scene_.objects[id], ray, tmax)) return id;
-  if (key == kNoCandidates) return kMissId;
-  const auto& point = views_->points[light];
-  for (int32_t id : point ? point->cell(key) : views_->parallels[light]->cell(key)) {
+  for (int32_t id : cell) {
     if (clear.has(id) || misses_bound(ray, tmax, views_->bound_of[size_t(id)])) continue;
     if (blocks(scene_.objects[id], ray, tmax)) return id;
   }
   return kMissId;
+}
+
+int32_t EmbreeQuery::keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
+                                          int32_t key) const {
+  if (key == kNoCell) return occluder(ray, tmax);
+  if (!(tmax > 0.0)) return kMissId;
+  return cell_occluder(light_cell(light, key), ray, tmax, clear);
+}
+
+// keyed_light_occluder, ray by ray, in one loop: no call per ray (the
+// shading's own bookkeeping per ray, a virtual call, this function's
+// prologue) but the plugins'.
+void EmbreeQuery::keyed_light_occluders(size_t light, const RayLanes& rays, const int32_t* keys, const int32_t* self,
+                                        const uint8_t* cast, int32_t* blockers) const {
+  for (size_t j = 0; j < rays.count; ++j) {
+    blockers[j] = kMissId;
+    if (!cast[j]) continue;
+    const Ray ray{{rays.origin[0][j], rays.origin[1][j], rays.origin[2][j]}, {rays.dir[0][j], rays.dir[1][j], rays.dir[2][j]}};
+    const double tmax = rays.tmax[j];
+    const int32_t key = keys[j];
+    if (key == kNoCell)
+      blockers[j] = occluder(ray, tmax);
+    else if (tmax > 0.0)
+      blockers[j] = cell_occluder(light_cell(light, key), ray, tmax, {self[j], kMissId});
+  }
 }
 
 int32_t EmbreeQuery::light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear) const {

@@ -57,12 +57,19 @@ class EmbreeQuery final : public ObjectQuery {
   // Answered from those buffers where they apply, else by closest() and
   // occluder(); the answers are the same either way.
   Hit camera_closest(const Ray& ray) const override;
+  // The batch shares one candidate list, from the cone that holds its rays,
+  // and calls each plugin once per packet of rays (embree_query.cpp).
+  void camera_closest_batch(std::span<const Ray> rays, Hit* hits) const override;
   int32_t light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear = {}) const override;
   // The keys: a light buffer's cell, kNoCandidates, or kNoCell where no
   // buffer vouches for the ray (embree_view_buffers.hpp).
   void light_keys(size_t light, const RayLanes& rays, int32_t* keys) const override;
   int32_t keyed_light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear,
                                int32_t key) const override;
+  // The rays of one cell share its list, and each plugin is called once per
+  // packet of them (embree_query.cpp).
+  void keyed_light_occluders(size_t light, const RayLanes& rays, const int32_t* keys, const int32_t* self,
+                             const uint8_t* cast, int32_t* blockers) const override;
   // Whether light buffers are in use (for tests and --stats).
   bool has_views() const { return views_.has_value(); }
 
@@ -146,6 +153,9 @@ class EmbreeQuery final : public ObjectQuery {
     std::vector<std::optional<ParallelBuffer>> parallels;  // by light: directional lights
   };
   void start_views();
+  // A shadow ray's candidates by its key (a cell of the light's buffer, or kNoCandidates).
+  std::span<const int32_t> light_cell(size_t light, int32_t key) const;
+  int32_t cell_occluder(std::span<const int32_t> cell, const Ray& ray, double tmax, KnownClear clear) const;
 
   const Scene& scene_;
   Device& device_;

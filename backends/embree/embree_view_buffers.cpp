@@ -86,12 +86,7 @@ glm::dvec3 face_direction(const FaceFrame& f, double u, double v) {
   return glm::normalize(d);
 }
 
-// A cell's cone: its axis and the cosine and sine of its half-angle.
-struct Cone {
-  glm::dvec3 axis;
-  double cos_half, sin_half;
-  bool everywhere = false;
-};
+using Cone = PointBuffer::Cone;
 
 Cone cell_cone(int face, int i, int j, int resolution) {
   const FaceFrame f = face_frame(face);
@@ -161,15 +156,33 @@ CellLists::CellLists(const std::vector<std::vector<int32_t>>& cells) {
 
 PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach)
     : apex_(apex), reach_(reach), resolution_(cube_resolution(spheres.size())) {
-  std::vector<Cone> objects;
-  objects.reserve(spheres.size());
-  for (const BoundSphere& s : spheres) objects.push_back(sphere_cone(apex, s, reach));
+  object_cones_.reserve(spheres.size());
+  for (const BoundSphere& s : spheres) {
+    object_cones_.push_back(sphere_cone(apex, s, reach));
+    object_ids_.push_back(s.id);
+  }
   // Cell by cell, so each list is filled in place (ascending when `spheres` is).
   for (const Cone& cell : cell_cones(resolution_)) {
     for (size_t k = 0; k < spheres.size(); ++k)
-      if (cones_meet(cell, objects[k])) cells_.add(spheres[k].id);
+      if (cones_meet(cell, object_cones_[k])) cells_.add(spheres[k].id);
     cells_.end_cell();
   }
+}
+
+// The cell cones' argument, with the batch's cone for the cell's: a
+// direction that meets a sphere lies in both cones. The caller's cone may be
+// far narrower than a cell's (a tile of a large image), where its cosine
+// is ill-conditioned, so it is widened by 1e-9 in cosine first (over 1e-8
+// rad for any half-angle under ~0.1 rad, against a cosine's rounding of a
+// few ulps); past 60 degrees every sphere is listed.
+size_t PointBuffer::cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const {
+  const double c = cos_half - 1e-9;
+  const bool wide = !(c > 0.5);
+  const Cone cone{axis, c, std::sqrt(std::max(0.0, (1 - c) * (1 + c)))};
+  size_t count = 0;
+  for (size_t k = 0; k < object_cones_.size(); ++k)
+    if (wide || cones_meet(cone, object_cones_[k])) out[count++] = object_ids_[k];
+  return count;
 }
 
 namespace {

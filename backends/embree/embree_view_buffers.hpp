@@ -75,6 +75,21 @@ class PointBuffer {
   // runs); every width gives the same cells.
   void cells_toward(const RayLanes& rays, int32_t* cells, int width = 0) const;
   std::span<const int32_t> cell(int32_t index) const { return cells_[size_t(index)]; }
+  // Every object whose sphere (grown by reach) a half-line from within reach
+  // of the apex can meet along a direction within the cone around `axis`
+  // (unit) whose half-angle has cosine `cos_half`: the lists a batch of
+  // rays through one tile of an image shares. Written to `out` (room for
+  // every object of the buffer), ascending when the buffer's spheres are;
+  // returns how many.
+  size_t cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const;
+
+  // A cone of directions: axis, and the cosine and sine of its half-angle;
+  // `everywhere` for a sphere that holds the apex (its cone is every direction).
+  struct Cone {
+    glm::dvec3 axis{0};
+    double cos_half = 1, sin_half = 0;
+    bool everywhere = false;
+  };
 
  private:
   int32_t cell_of(double x, double y, double z) const;
@@ -82,6 +97,8 @@ class PointBuffer {
   double reach_;
   int resolution_;  // cells per face edge
   CellLists cells_;
+  std::vector<Cone> object_cones_;  // by position in `spheres`, as seen from the apex
+  std::vector<int32_t> object_ids_;
 };
 
 // Rays along one direction (exactly `dir`): a grid over the plane across it,

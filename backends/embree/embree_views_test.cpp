@@ -4,6 +4,8 @@
 // rays that end next to the light), with and without buffers.
 #include <gtest/gtest.h>
 
+#include <cstring>
+
 #include "embree_device.hpp"
 #include "embree_query.hpp"
 #include "embree_test_scenes.hpp"
@@ -58,7 +60,7 @@ Light random_light(Rng& rng) {
 }
 
 struct Counts {
-  int rays = 0, hits = 0, blocked = 0;
+  int rays = 0, hits = 0, blocked = 0, unkeyed = 0;
 };
 
 void check_camera_rays(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& counts) {
@@ -74,6 +76,47 @@ void check_camera_rays(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& count
     }
     ++counts.rays;
     counts.hits += want.found();
+  }
+}
+
+// The rays of a tile: a grid of rows x columns directions across `axis`,
+// `spread` apart (in the plane one unit along the axis), from `eye`.
+std::vector<Ray> tile_rays(Rng& rng, const glm::dvec3& eye, const glm::dvec3& axis, double spread, int rows, int columns) {
+  const glm::dvec3 helper = std::abs(axis.x) < 0.6 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
+  const glm::dvec3 across = glm::normalize(glm::cross(axis, helper)), up = glm::cross(axis, across);
+  std::vector<Ray> rays;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) {
+      const double u = spread * (i + uniform(rng, 0, 1)), v = spread * (j + uniform(rng, 0, 1));
+      rays.push_back({eye, glm::normalize(axis + u * across + v * up)});
+    }
+  return rays;
+}
+
+// camera_closest_batch against camera_closest, bit for bit (id, t and the
+// plugin's hit data): tiles of 16 x 16 rays and odd sizes, narrow and wide,
+// aimed at objects or anywhere, rays from everywhere, and a batch with one
+// ray not from the eye (which no buffer holds).
+void check_camera_batches(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& counts) {
+  const glm::dvec3 eye = 14.0 * random_unit(rng);
+  query.prepare_views(eye);
+  for (int b = 0; b < 24; ++b) {
+    const Ray aim = random_ray(rng, scene, 0.0, eye);
+    const double spread = std::array{1e-4, 2e-3, 2e-2, 0.2}[size_t(b % 4)];
+    std::vector<Ray> rays = b % 6 == 5 ? std::vector<Ray>{} : tile_rays(rng, eye, aim.dir, spread, 16, b % 3 == 0 ? 13 : 16);
+    if (b % 6 == 5)
+      for (int j = 0; j < 97; ++j) rays.push_back(random_ray(rng, scene, 0.0, eye));
+    if (b == 7) rays.back().origin += glm::dvec3(1e-9, 0, 0);
+    std::vector<Hit> got(rays.size());
+    query.camera_closest_batch(rays, got.data());
+    for (size_t j = 0; j < rays.size(); ++j) {
+      const Hit want = query.camera_closest(rays[j]);
+      ASSERT_EQ(got[j].id, want.id) << "batch " << b << ", ray " << j;
+      ASSERT_EQ(got[j].t, want.t);
+      ASSERT_EQ(std::memcmp(&got[j].prim, &want.prim, sizeof(PrismHit)), 0);
+      ++counts.rays;
+      counts.hits += want.found();
+    }
   }
 }
 
@@ -109,6 +152,11 @@ void check_shadow_lanes(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& coun
     std::vector<Ray> rays;
     std::vector<double> tmax;
     while (rays.size() < 61) {  // not a multiple of any lane width
+      if (rays.size() % 10 == 9) {  // one ray in ten anywhere: no buffer holds most of them
+        rays.push_back(random_ray(rng, scene, 10.0));
+        tmax.push_back(uniform(rng, 0, 30));
+        continue;
+      }
       glm::dvec3 point, normal;
       if (!random_surface_point(rng, scene, eye, point, normal)) continue;
       rays.push_back(shadow_ray(scene.lights[k], point, normal, tmax.emplace_back()));
@@ -123,11 +171,22 @@ void check_shadow_lanes(Rng& rng, Scene& scene, EmbreeQuery& query, Counts& coun
                          {dir[0].data(), dir[1].data(), dir[2].data()}, tmax.data(), rays.size()};
     std::vector<int32_t> keys(rays.size());
     query.light_keys(k, lanes, keys.data());
+    // All at once: some rays not cast, some leaving an object they cannot meet.
+    std::vector<uint8_t> cast(rays.size());
+    std::vector<int32_t> self(rays.size()), blockers(rays.size());
+    for (size_t j = 0; j < rays.size(); ++j) {
+      cast[j] = rng() % 8 != 0;
+      self[j] = rng() % 3 == 0 ? int32_t(rng() % scene.objects.size()) : kMissId;
+    }
+    query.keyed_light_occluders(k, lanes, keys.data(), self.data(), cast.data(), blockers.data());
     for (size_t j = 0; j < rays.size(); ++j) {
       const bool want = brute_occluded(scene, rays[j], tmax[j]);
       ASSERT_EQ(query.keyed_light_occluder(k, rays[j], tmax[j], {}, keys[j]) != kMissId, want) << "light " << k;
+      const int32_t one = query.keyed_light_occluder(k, rays[j], tmax[j], {self[j], kMissId}, keys[j]);
+      ASSERT_EQ(blockers[j], cast[j] ? one : kMissId) << "light " << k << ", ray " << j;
       ++counts.rays;
       counts.blocked += want;
+      counts.unkeyed += keys[j] == kNoCell;
     }
   }
 }
@@ -153,6 +212,14 @@ TEST(EmbreeViews, CameraRaysMatchBruteForce) {
   EXPECT_GT(counts.hits, 6000);
 }
 
+TEST(EmbreeViews, CameraBatchesAnswerAsOneRayAtATime) {
+  REQUIRE_PRIMITIVE("sphere");
+  Counts counts;
+  on_random_scenes(19, 8, 6, counts, check_camera_batches);
+  EXPECT_GT(counts.rays, 8 * 24 * 200);
+  EXPECT_GT(counts.hits, 20000);
+}
+
 TEST(EmbreeViews, ShadowRaysMatchBruteForce) {
   REQUIRE_PRIMITIVE("sphere");
   Counts counts;
@@ -161,7 +228,7 @@ TEST(EmbreeViews, ShadowRaysMatchBruteForce) {
   EXPECT_GT(counts.blocked, 4000);
 }
 
-TEST(EmbreeViews, ShadowRaysInLanesMatchBruteForce) {
+TEST(EmbreeViews, ShadowRaysInLanesAndBatchesMatchBruteForce) {
   REQUIRE_PRIMITIVE("sphere");
   Counts counts;
   on_random_scenes(16, 16, 3, counts, [](Rng& rng, Scene& scene, EmbreeQuery& query, Counts& c) {
@@ -169,6 +236,7 @@ TEST(EmbreeViews, ShadowRaysInLanesMatchBruteForce) {
   });
   EXPECT_EQ(counts.rays, 16 * 10 * 2 * 61);
   EXPECT_GT(counts.blocked, 2000);
+  EXPECT_GT(counts.unkeyed, 1000);
 }
 
 // Every lane width looks up the same cells as one ray at a time, for rays

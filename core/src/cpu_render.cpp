@@ -57,8 +57,8 @@ static_assert(Shader::kSamplesPerFinish == size_t(kTileSize) * kTileSize);
 // (~4 % of a showcase frame by perf).
 constexpr size_t kRaysMadeAhead = Shader::kSamplesPerFinish;
 
-// `rays`: kRaysMadeAhead rays of room, kept across the tiles of a range.
-void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vector<Ray>& rays) {
+// `rays`, `hits`: kRaysMadeAhead rays and hits of room, kept across the tiles of a range.
+void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vector<Ray>& rays, std::vector<Hit>& hits) {
   const PixelRect& r = f.rect;
   const ImageSettings& s = f.settings.image;
   const size_t spp = size_t(s.spp);
@@ -92,8 +92,9 @@ void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vec
   for (size_t first = 0; first < samples; first += kRaysMadeAhead) {
     const size_t n = std::min(kRaysMadeAhead, samples - first);
     for (size_t q = 0; q < n; ++q, next_sample(made)) rays[q] = f.camera_rays(made.i, made.j, sample_offset(made.k));
+    shader.camera_hits(std::span(rays).first(n), hits.data());
     for (size_t q = 0; q < n; ++q, next_sample(traced)) {
-      shader.trace_sample(rays[q], s.max_depth, traced.k == 0 && f.settings.aov_path);
+      shader.trace_sample(rays[q], hits[q], s.max_depth, traced.k == 0 && f.settings.aov_path);
       if (traced.k + 1 < s.spp) continue;
       if ((++waiting + 1) * spp > Shader::kSamplesPerFinish) store_traced();
     }
@@ -146,10 +147,11 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
     PhaseProfile profile;
     Shader shader(scene, query, counts, settings.profile ? &profile : nullptr);  // one per range of tiles: its buffers are reused
     std::vector<Ray> rays(kRaysMadeAhead);
+    std::vector<Hit> hits(kRaysMadeAhead);
     for (int tile = begin; tile < end; ++tile) {
       if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
       const uint64_t before = ray_total(counts);
-      render_tile(frame, tile, tiles_x, shader, rays);
+      render_tile(frame, tile, tiles_x, shader, rays, hits);
       const uint64_t rays = traced += ray_total(counts) - before;
       int finished = ++done;
       report_progress(settings, double(finished) / tiles, rays);

@@ -99,8 +99,9 @@ std::string primitive_desc_problem(const PrismPrimitiveDesc& d) {
   if (!plausible_name(d.type_name)) return "type_name is missing or not a name";
   if (!d.plugin_version) return "plugin_version is missing";
   if (!d.intersect || !d.surface || !d.pack || !d.bounds || !d.intersect_packet || !d.occluded_packet ||
-      !d.intersect_float)
-    return "missing functions (intersect, surface, pack, bounds, intersect_packet, occluded_packet, intersect_float)";
+      !d.intersect_float || !d.occluded)
+    return "missing functions (intersect, surface, pack, bounds, intersect_packet, occluded_packet, intersect_float, "
+           "occluded)";
   if (d.record_size % 16 != 0 || d.record_size > kMaxRecordSize)
     return "record_size " + std::to_string(d.record_size) + " (a multiple of 16, at most " +
            std::to_string(kMaxRecordSize) + ")";

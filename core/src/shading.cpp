@@ -127,9 +127,15 @@ void Shader::set_camera_cone(const glm::dvec3& eye, const glm::dvec3& axis, doub
   }
 }
 
-Hit Shader::closest_in_phase(const Ray& ray, Phase phase, int32_t leaving) const {
-  PhaseScope scope(profile_, phase);
-  if (phase == kPhaseCameraRays) return with_light_spheres(query_.camera_closest(ray), ray, 0.0, camera_sphere_lights_);
+void Shader::camera_hits(std::span<const Ray> rays, Hit* hits) const {
+  PhaseScope scope(profile_, kPhaseCameraRays);
+  query_.camera_closest_batch(rays, hits);
+  if (camera_sphere_lights_.empty()) return;
+  for (size_t j = 0; j < rays.size(); ++j) hits[j] = with_light_spheres(hits[j], rays[j], 0.0, camera_sphere_lights_);
+}
+
+Hit Shader::closest_secondary(const Ray& ray, int32_t leaving) const {
+  PhaseScope scope(profile_, kPhaseSecondaryRays);
   return with_light_spheres(query_.closest_leaving(ray, leaving), ray, 0.0, sphere_lights_);
 }
 
@@ -219,11 +225,28 @@ void Shader::light_batch() {
   for (size_t k = 0; k < scene_.lights.size(); ++k) {
     lanes.light_terms(scene_.lights[k]);  // l, energy, distance, n.l, diffuse, highlight; blocked and phong 0
     query_.light_keys(k, lanes.shadow_rays(), a.key.data());
-    // A light behind the surface (n.l <= 0) adds nothing and needs no shadow ray.
+    // A light behind the surface (n.l <= 0) adds nothing and needs no shadow
+    // ray. The keyed rays are answered together, the others one by one
+    // (shadowed() tries their likely blocker first), and every answer is
+    // taken in the rays' order.
+    std::array<uint8_t, LightLanes::kCapacity> keyed;
+    for (size_t j = 0; j < count; ++j) keyed[j] = a.ndl[j] > 0 && a.key[j] != ObjectQuery::kUnkeyed;
+    std::array<int32_t, LightLanes::kCapacity> blockers;
+    {
+      PhaseScope scope(profile_, kPhaseShadowRays);
+      query_.keyed_light_occluders(k, lanes.shadow_rays(), a.key.data(), a.self.data(), keyed.data(), blockers.data());
+    }
     for (size_t j = 0; j < count; ++j) {
       if (!(a.ndl[j] > 0)) continue;
-      const Ray ray{{a.o[0][j], a.o[1][j], a.o[2][j]}, {a.l[0][j], a.l[1][j], a.l[2][j]}};
-      const bool blocked = shadowed(k, ray, a.distance[j], a.self[j], a.key[j]);
+      bool blocked;
+      if (keyed[j]) {
+        ++counts_.n[kShadowRay];
+        blocked = blockers[j] != kMissId;
+        if (blocked) last_blocker_[k] = blockers[j];
+      } else {
+        const Ray ray{{a.o[0][j], a.o[1][j], a.o[2][j]}, {a.l[0][j], a.l[1][j], a.l[2][j]}};
+        blocked = shadowed(k, ray, a.distance[j], a.self[j], a.key[j]);
+      }
       note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
       a.blocked[j] = blocked ? 1.0 : 0.0;
     }
@@ -250,7 +273,7 @@ void Shader::light_batch() {
 
 void Shader::shade1(const Ray& ray, int32_t leaving, const glm::dvec3& coef) {
   ++counts_.n[kShade1Ray];
-  Hit hit = closest_in_phase(ray, kPhaseSecondaryRays, leaving);
+  Hit hit = closest_secondary(ray, leaving);
   note(uint32_t(hit.id));
   if (!hit.found()) return add_known_term(coef, background_radiance(scene_, ray.dir));
   if (hit.id < 0) return add_known_term(coef, scene_.lights[size_t(-2 - hit.id)].color);
@@ -263,7 +286,7 @@ void Shader::shade1(const Ray& ray, int32_t leaving, const glm::dvec3& coef) {
   add_point_term(coef, point);
 }
 
-void Shader::trace_sample(const Ray& camera_ray, int max_depth, bool want_path) {
+void Shader::trace_sample(const Ray& camera_ray, const Hit& camera_hit, int max_depth, bool want_path) {
   if (finished_) {
     results_.clear();
     finished_ = false;
@@ -283,7 +306,7 @@ void Shader::trace_sample(const Ray& camera_ray, int max_depth, bool want_path) 
   int32_t leaving = kMissId;  // an object the ray cannot meet (left_behind)
   for (int depth = 1; depth <= max_depth; ++depth) {
     ++counts_.n[size_t(kind)];
-    Hit hit = closest_in_phase(ray, depth == 1 ? kPhaseCameraRays : kPhaseSecondaryRays, leaving);
+    Hit hit = depth == 1 ? camera_hit : closest_secondary(ray, leaving);
     leaving = kMissId;
     if (depth == 1) result.first_id = hit.id;
     note(uint32_t(hit.id));

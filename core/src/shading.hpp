@@ -69,8 +69,12 @@ class Shader {
   // The camera rays traced until the next call lie in `cone` from `eye`:
   // the light spheres none of them can meet are not tested for them.
   void set_camera_cone(const glm::dvec3& eye, const glm::dvec3& axis, double cos_half);
-  // Traces one camera sample; its result is among finish()'s.
-  void trace_sample(const Ray& camera_ray, int max_depth, bool want_path);
+  // The closest hits of camera rays, light spheres included: all at once,
+  // so the query can share work between them (camera_closest_batch).
+  void camera_hits(std::span<const Ray> rays, Hit* hits) const;
+  // Traces one camera sample whose first hit camera_hits() found; its
+  // result is among finish()'s.
+  void trace_sample(const Ray& camera_ray, const Hit& camera_hit, int max_depth, bool want_path);
   // Completes every sample traced since the last finish() and returns their
   // results in the order they were traced (valid until the next trace_sample).
   std::span<const SampleResult> finish();
@@ -93,9 +97,9 @@ class Shader {
   };
   Surface surface_at(const Ray& ray, const Hit& hit) const;
   Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const;
-  // The closest hit of a camera ray (kPhaseCameraRays) or of a secondary one.
-  // `leaving`: an object a secondary ray cannot meet (left_behind), or kMissId.
-  Hit closest_in_phase(const Ray& ray, Phase phase, int32_t leaving) const;
+  // The closest hit of a secondary ray. `leaving`: an object it cannot
+  // meet (left_behind), or kMissId.
+  Hit closest_secondary(const Ray& ray, int32_t leaving) const;
   int32_t left_behind(const Surface& s) const;
   void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
   // The local light at s seen along dir: a point of the batch (its index).

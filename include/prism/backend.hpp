@@ -184,8 +184,9 @@ class Backend {
 }  // namespace prism
 
 // 3: Backend::update; 4: RenderSettings::profile; 5: PrismBackendDesc::layout_fingerprint;
-// 6: Backend::set_precision; 7: ObjectQuery::light_keys and keyed_light_occluder
-#define PRISM_BACKEND_ABI_VERSION 7u
+// 6: Backend::set_precision; 7: ObjectQuery::light_keys and keyed_light_occluder;
+// 8: ObjectQuery::camera_closest_batch and keyed_light_occluders
+#define PRISM_BACKEND_ABI_VERSION 8u
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
 struct PrismBackendProbe {

@@ -42,6 +42,12 @@ class ObjectQuery {
   // scene light `light`. A backend may answer these from data it prepared
   // for the frame's camera and lights; the answers are the same.
   virtual Hit camera_closest(const Ray& ray) const { return closest(ray, 0.0); }
+  // camera_closest for many camera rays at once (one tile's, as a rule):
+  // hits[j] is camera_closest(rays[j]), bit for bit. A backend may share
+  // work between them (one candidate list, one plugin call per packet).
+  virtual void camera_closest_batch(std::span<const Ray> rays, Hit* hits) const {
+    for (size_t j = 0; j < rays.size(); ++j) hits[j] = camera_closest(rays[j]);
+  }
   // closest(ray, 0) for a ray that leaves a convex object's front face
   // outward (a reflected ray): that object, `self`, cannot be hit and a
   // query may skip it (kMissId: none).
@@ -72,6 +78,23 @@ class ObjectQuery {
                                        int32_t key) const {
     (void)key;
     return light_occluder(light, ray, tmax, clear);
+  }
+  // keyed_light_occluder for every ray j of `rays` with cast[j] set, all at
+  // once: blockers[j] is keyed_light_occluder(light, ray j, rays.tmax[j],
+  // {self[j], kMissId}, keys[j]), the same object; kMissId where cast[j] is
+  // 0. A backend may share work between rays of one key (one candidate list,
+  // one plugin call per packet).
+  virtual void keyed_light_occluders(size_t light, const RayLanes& rays, const int32_t* keys, const int32_t* self,
+                                     const uint8_t* cast, int32_t* blockers) const {
+    for (size_t j = 0; j < rays.count; ++j) {
+      if (!cast[j]) {
+        blockers[j] = kMissId;
+        continue;
+      }
+      const Ray ray{{rays.origin[0][j], rays.origin[1][j], rays.origin[2][j]},
+                    {rays.dir[0][j], rays.dir[1][j], rays.dir[2][j]}};
+      blockers[j] = keyed_light_occluder(light, ray, rays.tmax[j], {self[j], kMissId}, keys[j]);
+    }
   }
   // True when any object is hit with 0 < t < tmax.
   bool occluded(const Ray& ray, double tmax) const { return occluder(ray, tmax) != kMissId; }

@@ -130,7 +130,13 @@ inline uint32_t blocks_packet(const Object& object, const Ray* rays, uint32_t ac
 
 // Whether one object is hit with 0 < t < tmax: the occlusion test. Inline
 // like intersect_object: a backend's shadow-ray loop calls it per candidate.
+// In double the plugin's `occluded` answers (the same answer, sometimes
+// without solving for t); in float, `intersect_float`'s hit below tmax.
 inline bool blocks(const Object& object, const Ray& ray, double tmax, IntersectEntry entry = kIntersectDouble) {
+  if (entry == kIntersectDouble) {
+    const PrismRay local = to_local(object, ray);
+    return object.desc->occluded(object.record(), &local, 0.0, tmax) != 0;
+  }
   PrismHit hit;
   return intersect_object(object, ray, 0.0, tmax, hit, entry) && hit.t < tmax;
 }

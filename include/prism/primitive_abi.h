@@ -38,6 +38,11 @@
  * primitive, tighter than the one around its box for round shapes (a
  * sphere's own radius, not sqrt(3) times it), so a CPU backend passes fewer
  * candidate objects on to `intersect`.
+ *
+ * Version 6 added `occluded`: the occlusion test of one ray, which a plugin
+ * may answer without solving for the hit (the torus stops once a root is
+ * bracketed inside the interval). The SDK's `describe_primitive` builds it
+ * from `intersect`; a plugin may supply its own.
  * A plugin built against an older version is refused at load with a
  * message that says to rebuild it against this SDK.
  */
@@ -51,7 +56,7 @@
 extern "C" {
 #endif
 
-#define PRISM_PRIMITIVE_ABI_VERSION 5u
+#define PRISM_PRIMITIVE_ABI_VERSION 6u
 #define PRISM_PRIMITIVE_ENTRY_SYMBOL "prism_primitive_entry"
 #define PRISM_EXPORT __attribute__((visibility("default")))
 
@@ -212,6 +217,13 @@ typedef struct PrismPrimitiveDesc {
    * this sphere and the box's is smaller. A sphere that misses part of the
    * primitive makes backends miss hits there: `prism plugin check` tests it. */
   int (*bounding_sphere)(const void* record, double center[3], double* radius);
+
+  /* Version 6, required. 1 where the ray meets the primitive with
+   * tmin < t < tmax, else 0: exactly whether `intersect` finds a hit with
+   * t < tmax on the same ray and bounds (a hit at exactly tmax, the light,
+   * does not count), but the plugin need not find where. The CPU backends'
+   * shadow rays ask this, not `intersect`. */
+  int (*occluded)(const void* record, const PrismRay* ray, double tmin, double tmax);
 } PrismPrimitiveDesc;
 
 typedef const PrismPrimitiveDesc* (*PrismPrimitiveEntryFn)(void);

@@ -78,7 +78,7 @@ void refine(const void* record, const PrismRayExt* ray, PrismHit* hit) {
   if (polish_hit(*ray, *hit, tube_distance, &p)) store3(p, hit->data);
 }
 
-const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(torus_intersect)>(
+const PrismPrimitiveDesc kDesc = describe_primitive<PRISM_SHARED_INTERSECT(torus_intersect), PRISM_SHARED_OCCLUDED(torus_occluded)>(
     "torus", PRISM_PRIMITIVE_TRANSFORMABLE, kFields, sizeof(TorusRecord), validate, pack, bounds,
     f64::abi_surface<f64::torus_surface>, kPluginGlsl, "torus", refine, bounding_sphere);
 

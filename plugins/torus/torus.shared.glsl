@@ -27,7 +27,11 @@
 //    Newton-bisection on g itself, which doubles as the final polish.
 // 4. Pieces are visited in order and only as far as needed: the first root
 //    with tmin < t <= tmax wins, tested on t itself (not on a rounded s).
-//    A grazing touch (g == 0 at a critical point) counts as a hit.
+//    A grazing touch (g == 0 at a critical point) counts as a hit. The
+//    occlusion test (torus_occluded) stops at the first piece whose sign
+//    change lies, ends and all, inside (tmin, tmax): the root the solver
+//    would find there stays in the piece, and t = t_f + R s rounds
+//    monotonically in s, so its t lies inside too.
 // 5. surface: the stored point is re-projected onto the tube (nearest point
 //    of the core circle plus r along the radial direction) and the normal is
 //    that radial direction, which is parallel to the spec's gradient.
@@ -65,6 +69,8 @@ struct TorusScan {
   bool done;
   bool found;
   real root;
+  bool any;     // an occlusion test: a root known to lie in (tmin, tmax) is enough
+  bool inside;  // found so, its root left unsolved
 };
 
 // Signed distance to the tube and its derivative along the scaled ray; on
@@ -97,6 +103,12 @@ void torus_advance(INOUT(TorusScan) sc, real b) {
     return;
   }
   if ((g0 > R(0.0)) == (gb > R(0.0)) || sc.tf + sc.big * b <= sc.tmin) return;
+  if (sc.any && sc.tf + sc.big * a0 > sc.tmin && sc.tf + sc.big * b < sc.tmax) {
+    sc.done = true;
+    sc.found = true;
+    sc.inside = true;
+    return;
+  }
   PrismBracket br = prism_bracket_start(a0, b, g0, gb, TORUS_ROOT_TOL * (R(1.0) + abs(b)));
   for (int i = 0; i < PRISM_BRACKET_MAX_STEPS; ++i) {
     real g, dg;
@@ -160,20 +172,21 @@ void torus_scan_pieces(INOUT(TorusScan) sc, real h) {
   }
 }
 
-bool torus_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(PrismHit) hit) {
-  prism_clear_hit(hit);
+// Scans the ray's monotone pieces (see the top) for the first root with
+// tmin < t <= tmax; `any`: for an occlusion test. False where the ray misses
+// the bounding sphere's part inside the bounds.
+bool torus_scan(PrismRecord rec, PrismRay ray, real tmin, real tmax, bool any, OUT(TorusScan) sc, OUT(real3) foot) {
   real big = prism_record(rec, TORUS_MAJOR), minor = prism_record(rec, TORUS_MINOR);
   real3 d = ray.dir;
   real tf = prism_foot_parameter(ray.origin, d);
-  real3 foot = ray.origin + tf * d;
+  foot = ray.origin + tf * d;
   real3 perp = foot - dot(foot, d) * d;
   real bound = (big + minor) * (R(1.0) + R(1.0) / R(1000.0));  // slack: the outer equator touches R + r
   real half2 = bound * bound - dot(perp, perp);
+  sc.found = false;
   if (!(half2 >= R(0.0))) return false;
   real h = sqrt(half2) / big;
   if (tf + big * h <= tmin || tf - big * h > tmax) return false;
-
-  TorusScan sc;
   sc.u = foot / big;
   sc.d = d;
   sc.tube = minor / big;
@@ -184,13 +197,29 @@ bool torus_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(Pr
   sc.a = R(0.0);
   sc.ga = R(0.0);
   sc.done = false;
-  sc.found = false;
   sc.root = R(0.0);
+  sc.any = any;
+  sc.inside = false;
   torus_scan_pieces(sc, h);
-  if (!sc.found) return false;
-  hit.t = tf + big * sc.root;
-  hit.data = foot + (big * sc.root) * d;
+  return sc.found;
+}
+
+bool torus_intersect(PrismRecord rec, PrismRay ray, real tmin, real tmax, OUT(PrismHit) hit) {
+  prism_clear_hit(hit);
+  TorusScan sc;
+  real3 foot;
+  if (!torus_scan(rec, ray, tmin, tmax, false, sc, foot)) return false;
+  hit.t = sc.tf + sc.big * sc.root;
+  hit.data = foot + (sc.big * sc.root) * ray.dir;
   return true;
+}
+
+// Whether torus_intersect finds a hit with t < tmax.
+bool torus_occluded(PrismRecord rec, PrismRay ray, real tmin, real tmax) {
+  TorusScan sc;
+  real3 foot;
+  if (!torus_scan(rec, ray, tmin, tmax, true, sc, foot)) return false;
+  return sc.inside || sc.tf + sc.big * sc.root < tmax;
 }
 
 // The stored point re-projected onto the tube: nearest point of the core

@@ -108,6 +108,31 @@ TEST(TorusTest, EquatorialRayFindsAllFourCrossingsInOrder) {
   EXPECT_FALSE(s.intersect(o, d, 0.0, 8.7));
 }
 
+// The occlusion test on the equatorial ray: blocked exactly where a
+// crossing lies strictly inside (tmin, tmax), whether the interval holds
+// the whole bracket of a root (solved no further), ends inside the tube or
+// the hole, or ends on a crossing itself.
+TEST(TorusTest, OcclusionTestSeesACrossingStrictlyInsideTheBounds) {
+  Shape s = torus(1.0, 0.25);
+  dvec3 o(-10, 0, 0), d(1, 0, 0);
+  EXPECT_TRUE(s.occluded(o, d, 0.0, kInf));
+  EXPECT_TRUE(s.occluded(o, d, 0.0, 30.0));
+  EXPECT_FALSE(s.occluded(o, d, 0.0, 8.7));    // short of x = -1.25
+  EXPECT_TRUE(s.occluded(o, d, 0.0, 8.8));
+  EXPECT_FALSE(s.occluded(o, d, 8.8, 9.2));    // inside the tube, x = -1.2 .. -0.8
+  EXPECT_TRUE(s.occluded(o, d, 8.8, 9.3));
+  EXPECT_FALSE(s.occluded(o, d, 9.3, 10.7));   // across the hole, x = -0.7 .. 0.7
+  EXPECT_TRUE(s.occluded(o, d, 9.3, 10.8));
+  EXPECT_FALSE(s.occluded(o, d, 11.3, kInf));  // past the last crossing
+  for (double tmin : {0.0, 9.0, 10.0, 11.0}) {  // each crossing as tmax, and the double after it
+    const auto hit = s.intersect(o, d, tmin);
+    ASSERT_TRUE(hit);
+    EXPECT_FALSE(s.occluded(o, d, tmin, hit->t)) << tmin;
+    EXPECT_TRUE(s.occluded(o, d, tmin, std::nextafter(hit->t, kInf))) << tmin;
+  }
+  EXPECT_FALSE(s.occluded(o, -d, 0.0, kInf));  // away from the torus
+}
+
 TEST(TorusTest, RayFromInsideTubeExitsThroughTopWithSpecUv) {
   Shape s = torus(1.0, 0.25);
   auto hit = s.intersect({0, 0, 1}, {0, 1, 0});

@@ -17,7 +17,7 @@ class PluginCheck : public CliTest {};
 TEST_F(PluginCheck, PrintsTheDescriptorAndPassesOnEmbree) {
   RunResult r = run({"plugin", "check", built_plugin("torus").string(), "-b", "embree"});
   ASSERT_TRUE(ExitedWith(r, 0));
-  for (const char* part : {"torus 1.0.0 (ABI 5)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
+  for (const char* part : {"torus 1.0.0 (ABI 6)", "transformable", "refine: yes", "GLSL: yes (prefix torus",
                            "major_radius", "minor_radius", "required", "embree (double): ids agree on 100.000 %",
                            "PASS"})
     EXPECT_NE(r.out.find(part), std::string::npos) << part << "\n" << r.out;
@@ -25,7 +25,8 @@ TEST_F(PluginCheck, PrintsTheDescriptorAndPassesOnEmbree) {
 }
 
 // Every plugin built, so a new one is covered without an edit here: its
-// packet entries answer each lane exactly as its scalar intersector does,
+// packet entries and its occlusion test (ABI 6) answer each lane exactly as
+// its scalar intersector does,
 // on random lanes and bounds, rays from inside and grazing rays; and its
 // surface asked for no uv (PRISM_HIT_SKIP_UV) gives the same t, point and
 // normal, bit for bit, on those rays' hits.
@@ -55,7 +56,7 @@ TEST_P(FloatEntry, IsPresentInTheDescriptor) {
   auto plugin = load_primitive_plugin(built_plugin(GetParam()), error);
   ASSERT_TRUE(plugin) << error;
   const PrismPrimitiveDesc& d = plugin->desc();
-  EXPECT_EQ(d.abi_version, 5u);
+  EXPECT_EQ(d.abi_version, 6u);
   ASSERT_NE(d.intersect_float, nullptr);
   const bool shared_dialect = d.glsl_source && std::string(d.glsl_source).find("OUT(PrismHit)") != std::string::npos;
   if (shared_dialect) {

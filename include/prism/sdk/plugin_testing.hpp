@@ -62,6 +62,12 @@ class Shape {
     return hit;
   }
 
+  // The plugin's occlusion test (ABI 6): a hit with tmin < t < tmax.
+  bool occluded(const glm::dvec3& o, const glm::dvec3& d, double tmin, double tmax) const {
+    PrismRay ray = make_ray(o, d);
+    return desc_->occluded(record(), &ray, tmin, tmax) != 0;
+  }
+
   Surface surface(const glm::dvec3& o, const glm::dvec3& d, const Hit& hit) const {
     PrismRay ray = make_ray(o, d);
     PrismSurface s{};

@@ -74,6 +74,7 @@ inline int validate_nothing(const double*, PrismError*) { return 0; }
 
 using IntersectFn = int (*)(const void*, const PrismRay*, double, double, PrismHit*);
 using RefineFn = void (*)(const void*, const PrismRayExt*, PrismHit*);
+using OccludedFn = int (*)(const void*, const PrismRay*, double, double);
 using SurfaceFn = void (*)(const void*, const PrismRay*, const PrismHit*, PrismSurface*);
 using BoundingSphereFn = int (*)(const void*, double*, double*);
 
@@ -105,14 +106,20 @@ uint32_t intersect_packet(const void* record, const PrismRayPacket* rays, uint32
   return found;
 }
 
+// `occluded` from `intersect`: a hit with t < tmax.
 template <IntersectFn Intersect>
+int occluded_by_intersect(const void* record, const PrismRay* ray, double tmin, double tmax) {
+  PrismHit hit;
+  return Intersect(record, ray, tmin, tmax, &hit) && hit.t < tmax ? 1 : 0;
+}
+
+template <OccludedFn Occluded>
 uint32_t occluded_packet(const void* record, const PrismRayPacket* rays, uint32_t active) {
   uint32_t blocked = 0;
   for (uint32_t lanes = active; lanes != 0; lanes &= lanes - 1) {
     const unsigned i = unsigned(std::countr_zero(lanes));
     const PrismRay ray = packet_lane(*rays, i);
-    PrismHit hit;
-    if (Intersect(record, &ray, rays->tmin[i], rays->tmax[i], &hit) && hit.t < rays->tmax[i]) blocked |= 1u << i;
+    if (Occluded(record, &ray, rays->tmin[i], rays->tmax[i])) blocked |= 1u << i;
   }
   return blocked;
 }
@@ -126,8 +133,11 @@ uint32_t occluded_packet(const void* record, const PrismRayPacket* rays, uint32_
 // PRISM_SHARED_INTERSECT (prism/sdk/shared_plugin.hpp); a hand-written one
 // has no float instantiation, and its double `Intersect` stands in.
 // `bounding_sphere` (version 5) is optional: without it the core uses the
-// sphere around `bounds`.
-template <IntersectFn Intersect, IntersectFn IntersectFloat = Intersect, size_t FieldCount>
+// sphere around `bounds`. `Occluded` (version 6) is the occlusion test, by
+// default `Intersect`'s hit below tmax; a plugin written in the shared
+// dialect may pass its own with PRISM_SHARED_OCCLUDED.
+template <IntersectFn Intersect, IntersectFn IntersectFloat = Intersect,
+          OccludedFn Occluded = occluded_by_intersect<Intersect>, size_t FieldCount>
 constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t flags,
                                                 const PrismField (&fields)[FieldCount], uint32_t record_size,
                                                 int (*validate)(const double*, PrismError*),
@@ -156,9 +166,10 @@ constexpr PrismPrimitiveDesc describe_primitive(const char* type_name, uint32_t 
                             glsl_prefix,
                             refine,
                             intersect_packet<Intersect>,
-                            occluded_packet<Intersect>,
+                            occluded_packet<Occluded>,
                             IntersectFloat,
-                            bounding_sphere};
+                            bounding_sphere,
+                            Occluded};
 }
 
 // Fills a PrismSurface from local point, normal and uv.

@@ -52,6 +52,14 @@ int abi_intersect(const void* record, const ::PrismRay* ray, double tmin, double
   return 1;
 }
 
+using SharedOccluded = bool (*)(PrismRecord, PrismRay, real, real);
+
+// The descriptor's `occluded`, from a shared-dialect occlusion test.
+template <SharedOccluded Occluded>
+int abi_occluded(const void* record, const ::PrismRay* ray, double tmin, double tmax) {
+  return Occluded(prism_record_at(record), ray_from_abi(ray), tmin, tmax) ? 1 : 0;
+}
+
 // Two calls of the inlined `Surface`: where the core asks for no uv
 // (PRISM_HIT_SKIP_UV), nothing reads the copy's uv, and the compiler drops
 // the arithmetic that only uv needs (a sphere's atan2 and asin), while the
@@ -124,3 +132,8 @@ int abi_intersect_float(const void* record, const ::PrismRay* ray, double tmin, 
 #define PRISM_SHARED_INTERSECT(name) \
   ::prism::sdk::f64::abi_intersect<::prism::sdk::f64::name>, \
       ::prism::sdk::f32::abi_intersect_float<::prism::sdk::f32::name>
+
+// describe_primitive's `occluded` entry (the template argument after the two
+// above) from the shared-dialect function `name` (e.g. torus_occluded), in
+// double: bool name(PrismRecord, PrismRay, real tmin, real tmax).
+#define PRISM_SHARED_OCCLUDED(name) ::prism::sdk::f64::abi_occluded<::prism::sdk::f64::name>
