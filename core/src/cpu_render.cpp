@@ -91,7 +91,7 @@ void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vec
   Cursor made{x0, y0, 0}, traced{x0, y0, 0};
   for (size_t first = 0; first < samples; first += kRaysMadeAhead) {
     const size_t n = std::min(kRaysMadeAhead, samples - first);
-    for (size_t q = 0; q < n; ++q, next_sample(made)) rays[q] = f.camera_rays(made.i, made.j, sample_offset(made.k));
+    for (size_t q = 0; q < n; ++q, next_sample(made)) f.camera_rays.make(made.i, made.j, sample_offset(made.k), rays[q]);
     shader.camera_hits(std::span(rays).first(n), hits.data());
     for (size_t q = 0; q < n; ++q, next_sample(traced)) {
       shader.trace_sample(rays[q], hits[q], s.max_depth, traced.k == 0 && f.settings.aov_path);
