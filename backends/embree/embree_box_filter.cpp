@@ -5,6 +5,10 @@
 #include <cstring>
 #include <limits>
 
+#if defined(__x86_64__)
+#include <immintrin.h>
+#endif
+
 namespace prism::embree {
 
 namespace {
@@ -62,20 +66,43 @@ template <class V>
   }
 }
 
-void clip2(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o, const glm::dvec3& inv, double t0, double t1,
-           double* enter, double* leave) {
+// The slots below `count` whose box the ray meets (enter <= leave, false
+// for a NaN), bit k for slot k, read back from what clip_boxes just wrote,
+// four slots at a time (one compare, one move of the sign bits): loads as
+// wide as AVX2's stores, or as either half of a 512-bit one (Zen 4 stores
+// those as two 256-bit halves), so that each can be forwarded from its
+// store. The padding slots' boxes lie at +infinity, where a ray with no hit
+// yet (t1 infinite) "meets" them: they are masked off.
+#if defined(__x86_64__)
+[[gnu::target("avx2")]] uint32_t slots_met(size_t count, const double* enter, const double* leave) {
+  uint32_t met = 0;
+  for (size_t k = 0; k < count; k += 4) {
+    const __m256d meets = _mm256_cmp_pd(_mm256_loadu_pd(enter + k), _mm256_loadu_pd(leave + k), _CMP_LE_OQ);
+    met |= uint32_t(_mm256_movemask_pd(meets)) << k;
+  }
+  return count >= 32 ? met : met & ((1u << count) - 1);
+}
+#endif
+
+uint32_t clip2(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o, const glm::dvec3& inv, double t0, double t1,
+               double* enter, double* leave) {
   clip_boxes<Doubles2>(s, n, o, inv, t0, t1, enter, leave);
+  uint32_t met = 0;
+  for (size_t k = 0; k < n; ++k) met |= uint32_t(enter[k] <= leave[k]) << k;
+  return met;
 }
 
 #if defined(__x86_64__)
-[[gnu::target("avx2")]] void clip4(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o, const glm::dvec3& inv,
-                                   double t0, double t1, double* enter, double* leave) {
+[[gnu::target("avx2")]] uint32_t clip4(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o,
+                                       const glm::dvec3& inv, double t0, double t1, double* enter, double* leave) {
   clip_boxes<Doubles4>(s, n, o, inv, t0, t1, enter, leave);
+  return slots_met(n, enter, leave);
 }
 
-[[gnu::target("avx512f")]] void clip8(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o,
-                                      const glm::dvec3& inv, double t0, double t1, double* enter, double* leave) {
+[[gnu::target("avx512f")]] uint32_t clip8(const BoxFilter::Slabs& s, size_t n, const glm::dvec3& o,
+                                          const glm::dvec3& inv, double t0, double t1, double* enter, double* leave) {
   clip_boxes<Doubles8>(s, n, o, inv, t0, t1, enter, leave);
+  return slots_met(n, enter, leave);
 }
 #endif
 
@@ -120,11 +147,11 @@ void BoxFilter::set_box(int32_t id, const Box3& box) {
   }
 }
 
-void BoxFilter::clip(const glm::dvec3& origin, const glm::dvec3& inv, double t0, double t1, std::span<double> enter,
-                     std::span<double> leave, int width) const {
+uint32_t BoxFilter::clip(const glm::dvec3& origin, const glm::dvec3& inv, double t0, double t1, std::span<double> enter,
+                         std::span<double> leave, int width) const {
   const ClipFunction f = width == 0 ? clip_ : clip_function(width);
   const Slabs slabs{{lo_[0].data(), lo_[1].data(), lo_[2].data()}, {hi_[0].data(), hi_[1].data(), hi_[2].data()}};
-  f(slabs, ids_.size(), origin, inv, t0, t1, enter.data(), leave.data());
+  return f(slabs, ids_.size(), origin, inv, t0, t1, enter.data(), leave.data());
 }
 
 }  // namespace prism::embree

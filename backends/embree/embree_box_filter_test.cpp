@@ -7,6 +7,7 @@
 #include <bit>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 
 #include "embree_box_filter.hpp"
 #include "embree_test_scenes.hpp"
@@ -95,6 +96,25 @@ TEST(BoxFilter, SetBoxMovesTheBox) {
   EXPECT_GT(enter[2], leave[2]);
 }
 
+// A closest-hit query clips to (tmin, infinity) until it has a hit; the
+// padding slots' boxes, at +infinity, then "meet" the ray there, but the
+// mask names only the real boxes the ray meets, at every width.
+TEST(BoxFilter, MaskHoldsTheBoxesMetAndNoPaddingSlot) {
+  std::vector<Object> objects(3);
+  objects[0].world_bounds = Box3{glm::dvec3(2, -1, -1), glm::dvec3(3, 1, 1)};     // on the ray
+  objects[1].world_bounds = Box3{glm::dvec3(2, 5, -1), glm::dvec3(3, 6, 1)};      // beside it
+  objects[2].world_bounds = Box3{glm::dvec3(10, -1, -1), glm::dvec3(11, 1, 1)};   // on it, further
+  const std::vector<int32_t> ids = {0, 1, 2};
+  const BoxFilter filter(ids, objects, 1e-6);
+  const glm::dvec3 o(0, 0, 0), inv(1.0, 1.0 / 1e-9, 1.0 / 1e-9);  // nearly along +x
+  for (int width : BoxFilter::clip_widths()) {
+    std::array<double, BoxFilter::kMaxObjects> enter, leave;
+    EXPECT_EQ(filter.clip(o, inv, 0.0, std::numeric_limits<double>::infinity(), enter, leave, width), 0b101u)
+        << "width " << width;
+    EXPECT_EQ(filter.clip(o, inv, 0.0, 5.0, enter, leave, width), 0b001u) << "width " << width;
+  }
+}
+
 // Every vector width this processor runs gives, bit for bit, the slab test
 // written out here one box at a time (the .cpp's claim), on boxes of every
 // size and rays from near and far, some of them along an axis (inverse
@@ -124,7 +144,8 @@ TEST(BoxFilter, EveryVectorWidthGivesTheScalarSlabTestsBits) {
     const double t0 = uniform(rng, 0, 1), t1 = t0 + std::pow(10.0, uniform(rng, -1, 5));
     for (int width : widths) {
       std::array<double, BoxFilter::kMaxObjects> enter, leave;
-      filter.clip(o, inv, t0, t1, enter, leave, width);
+      const uint32_t entered = filter.clip(o, inv, t0, t1, enter, leave, width);
+      ASSERT_EQ(entered >> objects.size(), 0u) << "width " << width << ": a padding slot in the mask";
       for (size_t k = 0; k < objects.size(); ++k) {
         double t_in = t0, t_out = t1;
         for (int a = 0; a < 3; ++a) {
@@ -135,6 +156,7 @@ TEST(BoxFilter, EveryVectorWidthGivesTheScalarSlabTestsBits) {
         }
         ASSERT_EQ(std::bit_cast<uint64_t>(enter[k]), std::bit_cast<uint64_t>(t_in)) << "width " << width << ", box " << k;
         ASSERT_EQ(std::bit_cast<uint64_t>(leave[k]), std::bit_cast<uint64_t>(t_out)) << "width " << width << ", box " << k;
+        ASSERT_EQ((entered >> k) & 1u, t_in <= t_out ? 1u : 0u) << "width " << width << ", box " << k;
       }
     }
   }

@@ -383,14 +383,13 @@ Hit EmbreeQuery::closest_filtered(const Ray& ray, double tmin, int32_t skip, con
   ctx.skip = skip;
   for (int32_t id : brute_ids_) consider(ctx, scene_.objects[id], id);
   std::array<double, BoxFilter::kMaxObjects> enter, leave;
-  const size_t n = filter_->size();
-  filter_->clip(ray.origin, inv, tmin, ctx.best.t, std::span(enter).first(filter_->padded_size()),
-                std::span(leave).first(filter_->padded_size()));
+  const uint32_t entered = filter_->clip(ray.origin, inv, tmin, ctx.best.t, std::span(enter).first(filter_->padded_size()),
+                                         std::span(leave).first(filter_->padded_size()));
   // The boxes the ray enters, nearest first (insertion sort: a handful).
   std::array<uint8_t, BoxFilter::kMaxObjects> order;
   size_t count = 0;
-  for (size_t k = 0; k < n; ++k) {
-    if (!(enter[k] <= leave[k])) continue;
+  for (uint32_t left = entered; left != 0; left &= left - 1) {
+    const size_t k = size_t(std::countr_zero(left));
     size_t at = count++;
     for (; at > 0 && enter[order[at - 1]] > enter[k]; --at) order[at] = order[at - 1];
     order[at] = uint8_t(k);
@@ -409,12 +408,11 @@ int32_t EmbreeQuery::occluder_filtered(const Ray& ray, double tmax, const glm::d
     if (blocks(scene_.objects[id], ray, tmax)) return id;
   }
   std::array<double, BoxFilter::kMaxObjects> enter, leave;
-  const size_t n = filter_->size();
-  filter_->clip(ray.origin, inv, 0.0, tmax, std::span(enter).first(filter_->padded_size()),
-                std::span(leave).first(filter_->padded_size()));
-  for (size_t k = 0; k < n; ++k) {
-    const int32_t id = filter_->id(k);
-    if (enter[k] <= leave[k] && blocks(scene_.objects[id], ray, tmax)) return id;
+  const uint32_t entered = filter_->clip(ray.origin, inv, 0.0, tmax, std::span(enter).first(filter_->padded_size()),
+                                         std::span(leave).first(filter_->padded_size()));
+  for (uint32_t left = entered; left != 0; left &= left - 1) {
+    const int32_t id = filter_->id(size_t(std::countr_zero(left)));
+    if (blocks(scene_.objects[id], ray, tmax)) return id;
   }
   return kMissId;
 }
@@ -631,20 +629,24 @@ void EmbreeQuery::light_keys(size_t light, const RayLanes& rays, int32_t* keys) 
   std::fill_n(keys, rays.count, kNoCell);
 }
 
-[[gnu::always_inline]] inline std::span<const int32_t> EmbreeQuery::light_cell(size_t light, int32_t key) const {
-  if (key == kNoCandidates) return {};
-  const auto& point = views_->points[light];
-  return point ? point->cell(key) : views_->parallels[light]->cell(key);
+EmbreeQuery::LightLists EmbreeQuery::light_lists(size_t light) const {
+  LightLists lists;
+  if (light < views_->points.size() && views_->points[light]) lists.cells = &views_->points[light]->cells();
+  if (light < views_->parallels.size() && views_->parallels[light]) lists.cells = &views_->parallels[light]->cells();
+  lists.unbounded = views_->unbounded;
+  lists.bound_of = views_->bound_of.data();
+  lists.objects = scene_.objects.data();
+  return lists;
 }
 
 // The unbounded objects, then the cell's list: the first that blocks the ray.
-[[gnu::always_inline]] inline int32_t EmbreeQuery::cell_occluder(std::span<const int32_t> cell, const Ray& ray,
-                                                                 double tmax, KnownClear clear) const {
-  for (int32_t id : views_->unbounded)
-    if (!clear.has(id) && blocks(scene_.objects[id], ray, tmax)) return id;
-  for (int32_t id : cell) {
-    if (clear.has(id) || misses_bound(ray, tmax, views_->bound_of[size_t(id)])) continue;
-    if (blocks(scene_.objects[id], ray, tmax)) return id;
+[[gnu::always_inline]] inline int32_t EmbreeQuery::cell_occluder(const LightLists& lists, int32_t key, const Ray& ray,
+                                                                 double tmax, KnownClear clear) {
+  for (int32_t id : lists.unbounded)
+    if (!clear.has(id) && blocks(lists.objects[id], ray, tmax)) return id;
+  for (int32_t id : lists.cell(key)) {
+    if (clear.has(id) || misses_bound(ray, tmax, lists.bound_of[size_t(id)])) continue;
+    if (blocks(lists.objects[id], ray, tmax)) return id;
   }
   return kMissId;
 }
@@ -653,7 +655,7 @@ int32_t EmbreeQuery::keyed_light_occluder(size_t light, const Ray& ray, double t
                                           int32_t key) const {
   if (key == kNoCell) return occluder(ray, tmax);
   if (!(tmax > 0.0)) return kMissId;
-  return cell_occluder(light_cell(light, key), ray, tmax, clear);
+  return cell_occluder(light_lists(light), key, ray, tmax, clear);
 }
 
 // keyed_light_occluder, ray by ray, in one loop: no call per ray (the
@@ -661,16 +663,21 @@ int32_t EmbreeQuery::keyed_light_occluder(size_t light, const Ray& ray, double t
 // prologue) but the plugins'.
 void EmbreeQuery::keyed_light_occluders(size_t light, const RayLanes& rays, const int32_t* keys, const int32_t* self,
                                         const uint8_t* cast, int32_t* blockers) const {
+  // Without buffers every key is kNoCell.
+  const LightLists lists = views_ ? light_lists(light) : LightLists{};
   for (size_t j = 0; j < rays.count; ++j) {
-    blockers[j] = kMissId;
-    if (!cast[j]) continue;
-    const Ray ray{{rays.origin[0][j], rays.origin[1][j], rays.origin[2][j]}, {rays.dir[0][j], rays.dir[1][j], rays.dir[2][j]}};
-    const double tmax = rays.tmax[j];
-    const int32_t key = keys[j];
-    if (key == kNoCell)
-      blockers[j] = occluder(ray, tmax);
-    else if (tmax > 0.0)
-      blockers[j] = cell_occluder(light_cell(light, key), ray, tmax, {self[j], kMissId});
+    int32_t blocker = kMissId;
+    if (cast[j]) {
+      const Ray ray{{rays.origin[0][j], rays.origin[1][j], rays.origin[2][j]},
+                    {rays.dir[0][j], rays.dir[1][j], rays.dir[2][j]}};
+      const double tmax = rays.tmax[j];
+      const int32_t key = keys[j];
+      if (key == kNoCell)
+        blocker = occluder(ray, tmax);
+      else if (tmax > 0.0)
+        blocker = cell_occluder(lists, key, ray, tmax, {self[j], kMissId});
+    }
+    blockers[j] = blocker;
   }
 }
 

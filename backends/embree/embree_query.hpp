@@ -153,9 +153,21 @@ class EmbreeQuery final : public ObjectQuery {
     std::vector<std::optional<ParallelBuffer>> parallels;  // by light: directional lights
   };
   void start_views();
-  // A shadow ray's candidates by its key (a cell of the light's buffer, or kNoCandidates).
-  std::span<const int32_t> light_cell(size_t light, int32_t key) const;
-  int32_t cell_occluder(std::span<const int32_t> cell, const Ray& ray, double tmax, KnownClear clear) const;
+  // What the shadow rays toward one light read, looked up once for all of
+  // them: the light's cell lists (null where it has no buffer), the
+  // unbounded objects and the grown bounding spheres.
+  struct LightLists {
+    const CellLists* cells = nullptr;
+    std::span<const int32_t> unbounded;
+    const glm::dvec4* bound_of = nullptr;
+    const Object* objects = nullptr;
+    // A shadow ray's candidates by its key (a cell, or kNoCandidates).
+    std::span<const int32_t> cell(int32_t key) const {
+      return key == kNoCandidates ? std::span<const int32_t>{} : (*cells)[size_t(key)];
+    }
+  };
+  LightLists light_lists(size_t light) const;  // views_ must hold buffers
+  static int32_t cell_occluder(const LightLists& lists, int32_t key, const Ray& ray, double tmax, KnownClear clear);
 
   const Scene& scene_;
   Device& device_;

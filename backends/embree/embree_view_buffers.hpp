@@ -74,7 +74,7 @@ class PointBuffer {
   // `width`: the lanes (2, or 4 with AVX2; 0: the widest the processor
   // runs); every width gives the same cells.
   void cells_toward(const RayLanes& rays, int32_t* cells, int width = 0) const;
-  std::span<const int32_t> cell(int32_t index) const { return cells_[size_t(index)]; }
+  const CellLists& cells() const { return cells_; }  // cell k's list: cells()[k]
   // Every object whose sphere (grown by reach) a half-line from within reach
   // of the apex can meet along a direction within the cone around `axis`
   // (unit) whose half-angle has cosine `cos_half`: the lists a batch of
@@ -113,7 +113,7 @@ class ParallelBuffer {
   // kNoCandidates where no sphere can, or kNoCell where the ray does not run
   // along dir() or starts too far for the lists' margin (see the .cpp).
   void cells_of(const RayLanes& rays, int32_t* cells, int width = 0) const;
-  std::span<const int32_t> cell(int32_t index) const { return cells_[size_t(index)]; }
+  const CellLists& cells() const { return cells_; }  // cell k's list: cells()[k]
 
  private:
   glm::dvec3 dir_;
