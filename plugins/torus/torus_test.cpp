@@ -133,6 +133,37 @@ TEST(TorusTest, OcclusionTestSeesACrossingStrictlyInsideTheBounds) {
   EXPECT_FALSE(s.occluded(o, -d, 0.0, kInf));  // away from the torus
 }
 
+// The equatorial ray of the test above from a million units away: the
+// crossings at x = -1.25, -0.75, 0.75, 1.25 (t = 1e6 + x, exact in double),
+// and windows (tmin, tmax) that end or start a micro-unit from one of them,
+// far above t's rounding at 1e6 (~1e-10): the window tests on t, after the
+// origin moved to the chord's middle, must keep each crossing on its side.
+TEST(TorusTest, WindowsAroundCrossingsFromAfar) {
+  Shape s = torus(1.0, 0.25);
+  const dvec3 o(-1e6, 0, 0), d(1, 0, 0);
+  const double crossing[4] = {999998.75, 999999.25, 1000000.75, 1000001.25};
+  double tmin = 0.0;
+  for (double want : crossing) {
+    const auto hit = s.intersect(o, d, tmin);
+    ASSERT_TRUE(hit) << want;
+    EXPECT_NEAR(hit->t, want, 1e-9);
+    EXPECT_FALSE(s.occluded(o, d, tmin, want - 1e-6)) << want;
+    EXPECT_TRUE(s.occluded(o, d, tmin, want + 1e-6)) << want;
+    EXPECT_FALSE(s.intersect(o, d, tmin, want - 1e-6)) << want;
+    tmin = want + 1e-6;
+  }
+  EXPECT_FALSE(s.occluded(o, d, tmin, kInf));  // past the last crossing
+  EXPECT_FALSE(s.occluded(o, d, 999998.75 + 1e-6, 999999.25 - 1e-6));  // inside the tube
+  EXPECT_FALSE(s.occluded(o, d, 999999.25 + 1e-6, 1000000.75 - 1e-6));  // across the hole
+  // A ray beside the tube, 1e-6 outside its outer equator (x = 1.25 + 1e-6,
+  // along z): no hit; 1e-6 inside it: the crossings at z = -+sqrt(1.25^2 - x^2).
+  EXPECT_FALSE(s.occluded({1.25 + 1e-6, 0, -1e6}, {0, 0, 1}, 0.0, kInf));
+  const double x = 1.25 - 1e-6;
+  const auto grazing = s.intersect({x, 0, -1e6}, {0, 0, 1});
+  ASSERT_TRUE(grazing);
+  EXPECT_NEAR(grazing->t, 1e6 - std::sqrt((1.25 - x) * (1.25 + x)), 1e-9);
+}
+
 TEST(TorusTest, RayFromInsideTubeExitsThroughTopWithSpecUv) {
   Shape s = torus(1.0, 0.25);
   auto hit = s.intersect({0, 0, 1}, {0, 1, 0});
