@@ -68,11 +68,11 @@ template <class V>
 
 // The slots below `count` whose box the ray meets (enter <= leave, false
 // for a NaN), bit k for slot k, read back from what clip_boxes just wrote,
-// four slots at a time (one compare, one move of the sign bits): loads as
-// wide as AVX2's stores, or as either half of a 512-bit one (Zen 4 stores
-// those as two 256-bit halves), so that each can be forwarded from its
-// store. The padding slots' boxes lie at +infinity, where a ray with no hit
-// yet (t1 infinite) "meets" them: they are masked off.
+// four slots at a time (one compare, one move of the sign bits), for the
+// 4- and 8-wide clips alike (read back as whole 512-bit vectors instead,
+// the showcase measured no faster: docs/architecture.md). The padding
+// slots' boxes lie at +infinity, where a ray with no hit yet (t1 infinite)
+// "meets" them: they are masked off.
 #if defined(__x86_64__)
 [[gnu::target("avx2")]] uint32_t slots_met(size_t count, const double* enter, const double* leave) {
   uint32_t met = 0;
