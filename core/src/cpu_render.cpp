@@ -47,8 +47,9 @@ void store_pixel(const Frame& f, int i, int j, std::span<const SampleResult> sam
   store3(&f.image.rgb[p * 3], sum / double(samples.size()));
 }
 
-// The shader lights its points in batches: pixels are traced, then stored
-// once a tile's worth of samples (or one pixel's, at a high spp) is finished.
+// The shader lights its points in batches: a tile's samples (as many whole
+// pixels' as kSamplesPerFinish holds, or one pixel's at a high spp) are
+// traced, then finished and stored together.
 static_assert(Shader::kSamplesPerFinish == size_t(kTileSize) * kTileSize);
 
 // The camera rays of up to this many samples are made before they are
@@ -57,8 +58,14 @@ static_assert(Shader::kSamplesPerFinish == size_t(kTileSize) * kTileSize);
 // (~4 % of a showcase frame by perf).
 constexpr size_t kRaysMadeAhead = Shader::kSamplesPerFinish;
 
-// `rays`, `hits`: kRaysMadeAhead rays and hits of room, kept across the tiles of a range.
-void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vector<Ray>& rays, std::vector<Hit>& hits) {
+// Room for kRaysMadeAhead samples, kept across the tiles of a range.
+struct SampleBuffers {
+  std::vector<Ray> rays = std::vector<Ray>(kRaysMadeAhead);
+  std::vector<Hit> hits = std::vector<Hit>(kRaysMadeAhead);
+  std::vector<uint8_t> want_path = std::vector<uint8_t>(kRaysMadeAhead);
+};
+
+void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, SampleBuffers& b) {
   const PixelRect& r = f.rect;
   const ImageSettings& s = f.settings.image;
   const size_t spp = size_t(s.spp);
@@ -76,30 +83,27 @@ void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, std::vec
     c.k = 0;
     next_pixel(c);
   };
-  // The pixels traced since the last finish(), from `stored` on, are stored
-  // once their samples' light is complete.
-  Cursor stored{x0, y0, 0};
-  size_t waiting = 0;
-  auto store_traced = [&] {
-    const std::span<const SampleResult> results = shader.finish();
-    for (size_t p = 0; p < waiting; ++p, next_pixel(stored)) store_pixel(f, stored.i, stored.j, results.subspan(p * spp, spp));
-    waiting = 0;
-  };
   const CameraRays::Cone cone = f.camera_rays.cone(x0, y0, x1, y1);
   shader.set_camera_cone(f.camera_rays.position(), cone.axis, cone.cos_half);
-  const size_t samples = size_t(x1 - x0) * size_t(y1 - y0) * spp;
-  Cursor made{x0, y0, 0}, traced{x0, y0, 0};
-  for (size_t first = 0; first < samples; first += kRaysMadeAhead) {
-    const size_t n = std::min(kRaysMadeAhead, samples - first);
-    for (size_t q = 0; q < n; ++q, next_sample(made)) f.camera_rays.make(made.i, made.j, sample_offset(made.k), rays[q]);
-    shader.camera_hits(std::span(rays).first(n), hits.data());
-    for (size_t q = 0; q < n; ++q, next_sample(traced)) {
-      shader.trace_sample(rays[q], hits[q], s.max_depth, traced.k == 0 && f.settings.aov_path);
-      if (traced.k + 1 < s.spp) continue;
-      if ((++waiting + 1) * spp > Shader::kSamplesPerFinish) store_traced();
+  const size_t pixels = size_t(x1 - x0) * size_t(y1 - y0);
+  const size_t pixels_per_finish = std::max<size_t>(1, Shader::kSamplesPerFinish / spp);
+  Cursor made{x0, y0, 0}, stored{x0, y0, 0};
+  for (size_t first_pixel = 0; first_pixel < pixels; first_pixel += pixels_per_finish) {
+    const size_t count = std::min(pixels_per_finish, pixels - first_pixel);
+    const size_t samples = count * spp;
+    for (size_t first = 0; first < samples; first += kRaysMadeAhead) {
+      const size_t n = std::min(kRaysMadeAhead, samples - first);
+      for (size_t q = 0; q < n; ++q, next_sample(made)) {
+        f.camera_rays.make(made.i, made.j, sample_offset(made.k), b.rays[q]);
+        b.want_path[q] = made.k == 0 && f.settings.aov_path;
+      }
+      const std::span<const Ray> rays = std::span(b.rays).first(n);
+      shader.camera_hits(rays, b.hits.data());
+      shader.trace_samples(rays, b.hits.data(), b.want_path.data(), s.max_depth);
     }
+    const std::span<const SampleResult> results = shader.finish();
+    for (size_t p = 0; p < count; ++p, next_pixel(stored)) store_pixel(f, stored.i, stored.j, results.subspan(p * spp, spp));
   }
-  if (waiting > 0) store_traced();
 }
 
 uint64_t ray_total(const RayCounts& counts) {
@@ -146,12 +150,11 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
     RayCounts counts;
     PhaseProfile profile;
     Shader shader(scene, query, counts, settings.profile ? &profile : nullptr);  // one per range of tiles: its buffers are reused
-    std::vector<Ray> rays(kRaysMadeAhead);
-    std::vector<Hit> hits(kRaysMadeAhead);
+    SampleBuffers buffers;
     for (int tile = begin; tile < end; ++tile) {
       if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
       const uint64_t before = ray_total(counts);
-      render_tile(frame, tile, tiles_x, shader, rays, hits);
+      render_tile(frame, tile, tiles_x, shader, buffers);
       const uint64_t rays = traced += ray_total(counts) - before;
       int finished = ++done;
       report_progress(settings, double(finished) / tiles, rays);

@@ -79,8 +79,12 @@ Shader::Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, 
       last_blocker_(scene.lights.size(), kMissId),
       lanes_(std::make_unique_for_overwrite<LightLanes>()) {  // no zeroing: every lane is written before it is read
   results_.reserve(kSamplesPerFinish);
-  terms_end_.reserve(kSamplesPerFinish);
   terms_.reserve(2 * kSamplesPerFinish);
+  // A wave holds at most two rays per sample (a Shade1 ray and the path's next).
+  wave_.reserve(2 * kSamplesPerFinish);
+  next_wave_.reserve(2 * kSamplesPerFinish);
+  wave_hits_.reserve(2 * kSamplesPerFinish);
+  wave_surfaces_.reserve(2 * kSamplesPerFinish);
 }
 
 Shader::~Shader() = default;
@@ -146,11 +150,10 @@ int32_t Shader::left_behind(const Surface& s) const {
   return s.front && convex ? s.id : kMissId;
 }
 
-Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
+void Shader::surface_at(const Ray& ray, const Hit& hit, Surface& s) const {
   const Object& object = scene_.objects[size_t(hit.id)];
   const Material& material = scene_.materials[size_t(object.material)];
   SurfacePoint sp = surface_of(object, ray, hit.prim, entry_, material.texture >= 0);
-  Surface s;
   s.position = sp.position;
   s.outward = sp.normal;
   s.front = glm::dot(ray.dir, sp.normal) < 0;
@@ -168,7 +171,6 @@ Shader::Surface Shader::surface_at(const Ray& ray, const Hit& hit) const {
     s.alpha = texel.a;
   }
   s.epsilon = offset_epsilon(s.position);
-  return s;
 }
 
 // The first-hit AOVs of a camera ray that meets light `-2 - hit.id`'s sphere.
@@ -271,100 +273,128 @@ void Shader::light_batch() {
   lanes.clear();
 }
 
-void Shader::shade1(const Ray& ray, int32_t leaving, const glm::dvec3& coef) {
-  ++counts_.n[kShade1Ray];
-  Hit hit = closest_secondary(ray, leaving);
-  note(uint32_t(hit.id));
-  if (!hit.found()) return add_known_term(coef, background_radiance(scene_, ray.dir));
-  if (hit.id < 0) return add_known_term(coef, scene_.lights[size_t(-2 - hit.id)].color);
-  Surface s = surface_at(ray, hit);
-  const int32_t point = local_light(s, ray.dir);
-  if (s.material->dielectric() && !s.front) {
-    const glm::dvec3 absorption = glm::exp(-s.material->absorb * s.t);
-    return add_point_term(coef, point, &absorption);
-  }
-  add_point_term(coef, point);
-}
-
-void Shader::trace_sample(const Ray& camera_ray, const Hit& camera_hit, int max_depth, bool want_path) {
+void Shader::trace_samples(std::span<const Ray> camera_rays, const Hit* camera_hits, const uint8_t* want_path,
+                           int max_depth) {
   if (finished_) {
     results_.clear();
     finished_ = false;
   }
+  // The samples that want no path hash together, each that does alone.
+  size_t begin = 0;
+  for (size_t j = 0; j < camera_rays.size(); ++j) {
+    if (!want_path[j]) continue;
+    if (j > begin) trace_wave(camera_rays.subspan(begin, j - begin), camera_hits + begin, max_depth, false);
+    trace_wave(camera_rays.subspan(j, 1), camera_hits + j, max_depth, true);
+    begin = j + 1;
+  }
+  if (begin < camera_rays.size()) trace_wave(camera_rays.subspan(begin), camera_hits + begin, max_depth, false);
+}
+
+void Shader::trace_wave(std::span<const Ray> camera_rays, const Hit* camera_hits, int max_depth, bool hashing) {
   // The hash records this sample's shadow rays only: the batch's earlier points go first.
-  if (want_path && lanes_->size() > 0) {
+  if (hashing && lanes_->size() > 0) {
     ShadingTime time(profile_);
     light_batch();
   }
   ShadingTime time(profile_);
-  hashing_ = want_path;
+  hashing_ = hashing;
   hash_ = 2166136261u;
-  SampleResult& result = results_.emplace_back();
-  glm::dvec3 w(1.0);
-  Ray ray = camera_ray;
-  int kind = kCameraRay;
-  int32_t leaving = kMissId;  // an object the ray cannot meet (left_behind)
-  for (int depth = 1; depth <= max_depth; ++depth) {
-    ++counts_.n[size_t(kind)];
-    Hit hit = depth == 1 ? camera_hit : closest_secondary(ray, leaving);
-    leaving = kMissId;
-    if (depth == 1) result.first_id = hit.id;
-    note(uint32_t(hit.id));
-    if (!hit.found()) {
-      add_known_term(w, background_radiance(scene_, ray.dir));
-      break;
-    }
-    if (hit.id < 0) {
-      if (depth == 1) note_light_sphere(result, ray, hit);
-      add_known_term(w, scene_.lights[size_t(-2 - hit.id)].color);
-      break;
-    }
-    Surface s = surface_at(ray, hit);
-    if (depth == 1) {
-      result.first_t = s.t;  // polished where ill-conditioned, as `prism trace` reports it
-      result.first_normal = s.outward;
-      result.first_albedo = s.color;
-    }
-    const Material& m = *s.material;
-    if (m.dielectric() && !s.front) w *= glm::exp(-m.absorb * s.t);
-    if (!m.dielectric()) {
-      double F = m.reflect > 0 ? m.reflect + (1 - m.reflect) * pow5(1 - s.cosi) : 0.0;
-      double weight = s.alpha * (1 - F);
-      if (weight > 0) add_point_term(w * weight, local_light(s, ray.dir));
-      if (s.alpha < 1) {
-        w *= 1 - s.alpha;
-        ray = s.spawn(ray.dir, -1);
-        kind = kPassRay;
-      } else if (F > 0) {
-        w *= F;
-        ray = s.spawn(reflect_dir(ray.dir, s.n), +1);
-        kind = kReflectRay;
-        leaving = left_behind(s);
-      } else {
-        break;
-      }
-      continue;
-    }
-    const double n1 = s.front ? 1.0 : m.ior, n2 = s.front ? m.ior : 1.0, eta = n1 / n2;
-    const double dn = glm::dot(s.n, ray.dir);
-    const double k = 1 - eta * eta * (1 - dn * dn);
-    if (k < 0) {  // total internal reflection: w unchanged
-      ray = s.spawn(reflect_dir(ray.dir, s.n), +1);
-      kind = kReflectRay;
-      leaving = left_behind(s);
-      continue;
-    }
-    const double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
-    const double x = n1 <= n2 ? s.cosi : std::sqrt(k);
-    const double F = r0 + (1 - r0) * pow5(1 - x);
-    shade1(s.spawn(reflect_dir(ray.dir, s.n), +1), left_behind(s), w * F);
-    w *= 1 - F;
-    ray = s.spawn(glm::normalize(eta * ray.dir - (eta * dn + std::sqrt(k)) * s.n), -1);
-    kind = kRefractRay;
+  const uint32_t first = uint32_t(results_.size());
+  results_.resize(results_.size() + camera_rays.size());
+  wave_.clear();
+  for (size_t j = 0; j < camera_rays.size(); ++j) {
+    PathRay& path = wave_.emplace_back();
+    path.ray = camera_rays[j];
+    path.w = glm::dvec3(1.0);
+    path.sample = first + uint32_t(j);
+    path.leaving = kMissId;
+    path.kind = kCameraRay;
   }
-  terms_end_.push_back(terms_.size());
-  result.path_hash = (hash_ >> 24) ^ (hash_ & 0xffffffu);  // folded to 24 bits: exact in a float
-  hashing_ = false;
+  for (int depth = 1; !wave_.empty(); ++depth) {
+    // The wave's queries first, all together, then its shading in order.
+    const Hit* hits = camera_hits;
+    if (depth > 1) {
+      wave_hits_.resize(wave_.size());
+      for (size_t i = 0; i < wave_.size(); ++i) wave_hits_[i] = closest_secondary(wave_[i].ray, wave_[i].leaving);
+      hits = wave_hits_.data();
+    }
+    // Then the surfaces at its hits, each independent of the others, so
+    // that one's plugin call and texture lookup overlap the next's.
+    wave_surfaces_.resize(wave_.size());
+    for (size_t i = 0; i < wave_.size(); ++i)
+      if (hits[i].id >= 0) surface_at(wave_[i].ray, hits[i], wave_surfaces_[i]);
+    next_wave_.clear();
+    for (size_t i = 0; i < wave_.size(); ++i) {
+      const PathRay& path = wave_[i];
+      ++counts_.n[size_t(path.kind)];
+      note(uint32_t(hits[i].id));
+      if (path.kind == kShade1Ray)
+        shade1_hit(path, hits[i], wave_surfaces_[i]);
+      else
+        shade_hit(path, hits[i], wave_surfaces_[i], depth, max_depth);
+    }
+    std::swap(wave_, next_wave_);
+  }
+  if (hashing) {
+    results_[first].path_hash = (hash_ >> 24) ^ (hash_ & 0xffffffu);  // folded to 24 bits: exact in a float
+    hashing_ = false;
+  }
+}
+
+void Shader::shade1_hit(const PathRay& path, const Hit& hit, const Surface& s) {
+  const Ray& ray = path.ray;
+  if (!hit.found()) return add_known_term(path.sample, path.w, background_radiance(scene_, ray.dir));
+  if (hit.id < 0) return add_known_term(path.sample, path.w, scene_.lights[size_t(-2 - hit.id)].color);
+  const int32_t point = local_light(s, ray.dir);
+  if (s.material->dielectric() && !s.front) {
+    const glm::dvec3 absorption = glm::exp(-s.material->absorb * s.t);
+    return add_point_term(path.sample, path.w, point, &absorption);
+  }
+  add_point_term(path.sample, path.w, point);
+}
+
+void Shader::shade_hit(const PathRay& path, const Hit& hit, const Surface& s, int depth, int max_depth) {
+  const Ray& ray = path.ray;
+  SampleResult& result = results_[path.sample];
+  if (depth == 1) result.first_id = hit.id;
+  if (!hit.found()) return add_known_term(path.sample, path.w, background_radiance(scene_, ray.dir));
+  if (hit.id < 0) {
+    if (depth == 1) note_light_sphere(result, ray, hit);
+    return add_known_term(path.sample, path.w, scene_.lights[size_t(-2 - hit.id)].color);
+  }
+  if (depth == 1) {
+    result.first_t = s.t;  // polished where ill-conditioned, as `prism trace` reports it
+    result.first_normal = s.outward;
+    result.first_albedo = s.color;
+  }
+  const bool last = depth == max_depth;
+  glm::dvec3 w = path.w;
+  const Material& m = *s.material;
+  if (m.dielectric() && !s.front) w *= glm::exp(-m.absorb * s.t);
+  if (!m.dielectric()) {
+    const double F = m.reflect > 0 ? m.reflect + (1 - m.reflect) * pow5(1 - s.cosi) : 0.0;
+    const double weight = s.alpha * (1 - F);
+    if (weight > 0) add_point_term(path.sample, w * weight, local_light(s, ray.dir));
+    if (last) return;
+    if (s.alpha < 1)
+      spawn_ray(path, w * (1 - s.alpha), s.spawn(ray.dir, -1), kPassRay, kMissId);
+    else if (F > 0)
+      spawn_ray(path, w * F, s.spawn(reflect_dir(ray.dir, s.n), +1), kReflectRay, left_behind(s));
+    return;
+  }
+  const double n1 = s.front ? 1.0 : m.ior, n2 = s.front ? m.ior : 1.0, eta = n1 / n2;
+  const double dn = glm::dot(s.n, ray.dir);
+  const double k = 1 - eta * eta * (1 - dn * dn);
+  if (k < 0) {  // total internal reflection: w unchanged
+    if (!last) spawn_ray(path, w, s.spawn(reflect_dir(ray.dir, s.n), +1), kReflectRay, left_behind(s));
+    return;
+  }
+  const double r0 = ((n1 - n2) / (n1 + n2)) * ((n1 - n2) / (n1 + n2));
+  const double x = n1 <= n2 ? s.cosi : std::sqrt(k);
+  const double F = r0 + (1 - r0) * pow5(1 - x);
+  // The one-level reflection is traced whatever the depth, as its own ray of the next wave.
+  spawn_ray(path, w * F, s.spawn(reflect_dir(ray.dir, s.n), +1), kShade1Ray, left_behind(s));
+  if (!last) spawn_ray(path, w * (1 - F), s.spawn(glm::normalize(eta * ray.dir - (eta * dn + std::sqrt(k)) * s.n), -1), kRefractRay, kMissId);
 }
 
 std::span<const SampleResult> Shader::finish() {
@@ -373,14 +403,8 @@ std::span<const SampleResult> Shader::finish() {
     light_batch();
   }
   // Each radiance summed term by term, in the order the scalar loop adds them.
-  size_t term = 0;
-  for (size_t i = 0; i < results_.size(); ++i) {
-    glm::dvec3 radiance(0.0);
-    for (; term < terms_end_[i]; ++term) radiance += terms_[term].coef * terms_[term].value.known;
-    results_[i].radiance = radiance;
-  }
+  for (const Term& term : terms_) results_[term.sample].radiance += term.coef * term.value.known;
   terms_.clear();
-  terms_end_.clear();
   terms_lit_ = 0;
   finished_ = true;
   return results_;

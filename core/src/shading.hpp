@@ -46,14 +46,19 @@ struct PhaseProfile {
   }
 };
 
-// Traces camera samples. The local lighting of their shading points (the
-// ambient, diffuse and Phong terms and their shadow rays) is computed in
-// batches across points (LightLanes), so a sample's radiance is complete
-// only when finish() has run; the path itself (hits, surfaces, secondary
-// rays, the AOVs) is traced at once. Every radiance is the sum the scalar
-// shading forms, term by term in the same order, so the batching changes no
-// bit. A sample that wants its path hash has its lighting computed at once
-// (the hash records each shadow ray's answer in the order they are cast).
+// Traces camera samples in waves: every path of a batch takes its first
+// bounce, then every path still going its second, and so on, so that one
+// kind of work runs many times in a row (the queries of a wave, then its
+// shading) instead of each sample's path being followed to its end. The
+// local lighting of the shading points (the ambient, diffuse and Phong terms
+// and their shadow rays) is computed in batches across points (LightLanes),
+// so a sample's radiance is complete only when finish() has run. Every
+// radiance is the sum the scalar shading forms, term by term in the same
+// order (a sample's terms are taken in the order its path makes them, wave
+// by wave), so neither the waves nor the batches change a bit. A sample that
+// wants its path hash is traced as a wave of its own, its lighting computed
+// at once (the hash records each shadow ray's answer in the order they are
+// cast).
 class Shader {
  public:
   // The samples a caller traces between finish() calls, as a rule (a 16x16
@@ -72,11 +77,11 @@ class Shader {
   // The closest hits of camera rays, light spheres included: all at once,
   // so the query can share work between them (camera_closest_batch).
   void camera_hits(std::span<const Ray> rays, Hit* hits) const;
-  // Traces one camera sample whose first hit camera_hits() found; its
-  // result is among finish()'s.
-  void trace_sample(const Ray& camera_ray, const Hit& camera_hit, int max_depth, bool want_path);
+  // Traces camera samples whose first hits camera_hits() found; their
+  // results are among finish()'s. want_path[j]: sample j wants its path hash.
+  void trace_samples(std::span<const Ray> camera_rays, const Hit* camera_hits, const uint8_t* want_path, int max_depth);
   // Completes every sample traced since the last finish() and returns their
-  // results in the order they were traced (valid until the next trace_sample).
+  // results in the order they were traced (valid until the next trace_samples).
   std::span<const SampleResult> finish();
   // Closest hit with t > tmin over objects and visible light spheres (objects win ties).
   Hit closest(const Ray& ray, double tmin) const;
@@ -94,8 +99,19 @@ class Shader {
   struct Term {
     glm::dvec3 coef;
     Radiance value;
+    uint32_t sample;  // whose radiance it adds to (an index into results_)
   };
-  Surface surface_at(const Ray& ray, const Hit& hit) const;
+  // A ray of a wave: what its answer is worth to its sample (w), and what to
+  // do with its hit (kind: kShade1Ray ends the path there).
+  struct PathRay {
+    Ray ray;
+    glm::dvec3 w;
+    uint32_t sample;
+    int32_t leaving;  // an object the ray cannot meet (left_behind), or kMissId
+    int32_t kind;     // a RayKind
+  };
+  // The surface at an object hit, written field by field into `s`.
+  void surface_at(const Ray& ray, const Hit& hit, Surface& s) const;
   Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const;
   // The closest hit of a secondary ray. `leaving`: an object it cannot
   // meet (left_behind), or kMissId.
@@ -104,23 +120,40 @@ class Shader {
   void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
   // The local light at s seen along dir: a point of the batch (its index).
   int32_t local_light(const Surface& s, const glm::dvec3& dir);
-  // Adds coef x the radiance a Shade1 ray brings back.
-  void shade1(const Ray& ray, int32_t leaving, const glm::dvec3& coef);
+  // The paths of `camera_rays` followed to their ends, wave by wave.
+  void trace_wave(std::span<const Ray> camera_rays, const Hit* camera_hits, int max_depth, bool hashing);
+  // A wave ray's hit shaded: its terms added, the rays it spawns appended
+  // to next_wave_ (a Shade1 ray, then the path's next ray unless `depth` is
+  // the last).
+  // `s`: the surface at an object hit (surface_at), unread for a miss.
+  void shade_hit(const PathRay& path, const Hit& hit, const Surface& s, int depth, int max_depth);
+  // A Shade1 ray's hit: the radiance it brings back (a single bounce).
+  void shade1_hit(const PathRay& path, const Hit& hit, const Surface& s);
+  void spawn_ray(const PathRay& from, const glm::dvec3& w, const Ray& ray, int32_t kind, int32_t leaving) {
+    PathRay& next = next_wave_.emplace_back();
+    next.ray = ray;
+    next.w = w;
+    next.sample = from.sample;
+    next.leaving = leaving;
+    next.kind = kind;
+  }
   // The terms are written field by field into their element, never built
   // whole on the stack and copied: such a copy's 16-byte loads straddle the
   // fields' 8-, 4- and 1-byte stores and wait for them to retire (a
   // store-forwarding stall, ~2 % of a showcase frame by perf).
-  void add_known_term(const glm::dvec3& coef, const glm::dvec3& known) {
+  void add_known_term(uint32_t sample, const glm::dvec3& coef, const glm::dvec3& known) {
     Term& term = terms_.emplace_back();
     term.coef = coef;
     term.value.known = known;
+    term.sample = sample;
   }
   // coef x batch point `point`'s light, times `absorption` where given. The
   // light is computed at once when the path hash needs its shadow rays now.
-  void add_point_term(const glm::dvec3& coef, int32_t point, const glm::dvec3* absorption = nullptr) {
+  void add_point_term(uint32_t sample, const glm::dvec3& coef, int32_t point, const glm::dvec3* absorption = nullptr) {
     Term& term = terms_.emplace_back();
     term.coef = coef;
     term.value.point = point;
+    term.sample = sample;
     if (absorption) {
       term.value.known = *absorption;
       term.value.absorbed = true;
@@ -146,8 +179,10 @@ class Shader {
   std::vector<int32_t> last_blocker_;  // per light: the object that blocked its last shadow ray
   std::unique_ptr<LightLanes> lanes_;  // the shading points waiting for their light
   std::vector<SampleResult> results_;  // the samples traced since the last finish()
-  std::vector<size_t> terms_end_;      // per sample: where its terms end in terms_
-  std::vector<Term> terms_;
+  std::vector<Term> terms_;            // every sample's, in the order their paths make them
+  std::vector<PathRay> wave_, next_wave_;  // the rays of this bounce and of the next
+  std::vector<Hit> wave_hits_;             // wave_'s closest hits
+  std::vector<Surface> wave_surfaces_;     // the surfaces at them (object hits only)
   size_t terms_lit_ = 0;  // terms_ before this index have every light computed
   bool finished_ = false;  // results_ were handed out by finish()
 };
