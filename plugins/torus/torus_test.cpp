@@ -164,6 +164,27 @@ TEST(TorusTest, WindowsAroundCrossingsFromAfar) {
   EXPECT_NEAR(grazing->t, 1e6 - std::sqrt((1.25 - x) * (1.25 + x)), 1e-9);
 }
 
+// Windows that end or start 1e-8 from each crossing of the equatorial ray
+// from x = -10 (t = 8.75, 9.25, 10.75, 11.25: x = -+1.25, -+0.75), and the
+// stretches between them: the occlusion test's Bernstein proof (a window
+// clear of the tube by more than rounding) must never claim a window that
+// holds a crossing, nor the scan miss one just inside.
+TEST(TorusTest, WindowsAHundredthOfAMicronFromEachCrossing) {
+  Shape s = torus(1.0, 0.25);
+  const dvec3 o(-10, 0, 0), d(1, 0, 0);
+  const double crossing[4] = {8.75, 9.25, 10.75, 11.25};
+  double from = 0.0;
+  for (double c : crossing) {
+    EXPECT_FALSE(s.occluded(o, d, from, c - 1e-8)) << c;
+    EXPECT_TRUE(s.occluded(o, d, from, c + 1e-8)) << c;
+    EXPECT_TRUE(s.occluded(o, d, c - 1e-8, kInf)) << c;
+    EXPECT_FALSE(s.intersect(o, d, from, c - 1e-8)) << c;
+    from = c + 1e-8;
+  }
+  EXPECT_FALSE(s.occluded(o, d, from, kInf));  // past the last crossing
+  EXPECT_FALSE(s.occluded(o, -d, 0.0, kInf));  // away from the torus
+}
+
 TEST(TorusTest, RayFromInsideTubeExitsThroughTopWithSpecUv) {
   Shape s = torus(1.0, 0.25);
   auto hit = s.intersect({0, 0, 1}, {0, 1, 0});
