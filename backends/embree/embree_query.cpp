@@ -107,7 +107,7 @@ struct QueryContext {
   double tmin = 0;           // closest: t > tmin
   double tmax = 0;           // occluded: 0 < t < tmax
   double shift = 0;          // Embree's tau = world t - shift
-  Hit best;                  // closest so far (double t, id, plugin data)
+  Hit* best = nullptr;       // closest so far (double t, id, plugin data): the caller's answer, written in place
   int32_t skip = kMissId;    // closest: an object the ray cannot meet (Embree still visits it)
   int32_t blocker = kMissId; // occluder: an object that blocks the ray
 };
@@ -172,11 +172,11 @@ glm::dvec4 grown_bound(const BoundSphere& s, double pad) { return {s.center, s.r
 void consider(QueryContext& ctx, const Object& object, int32_t id) {
   if (id == ctx.skip) return;
   PrismHit hit;
-  if (!intersect_object(object, *ctx.ray, ctx.tmin, ctx.best.t, hit)) return;
-  if (hit.t == ctx.best.t && id > ctx.best.id) return;
-  ctx.best.t = hit.t;
-  ctx.best.id = id;
-  ctx.best.prim = hit;
+  if (!intersect_object(object, *ctx.ray, ctx.tmin, ctx.best->t, hit)) return;
+  if (hit.t == ctx.best->t && id > ctx.best->id) return;
+  ctx.best->t = hit.t;
+  ctx.best->id = id;
+  ctx.best->prim = hit;
 }
 
 }  // namespace
@@ -208,12 +208,12 @@ void intersect_callback(const RTCIntersectFunctionNArguments* args) {
   const auto& group = *static_cast<const EmbreeQuery::Group*>(args->geometryUserPtr);
   const int32_t id = group.ids[args->primID];
   if (skipped(group, id)) return;
-  const int32_t before = ctx.best.id;
-  const double before_t = ctx.best.t;
+  const int32_t before = ctx.best->id;
+  const double before_t = ctx.best->t;
   consider(ctx, group.objects[id], id);
-  if (ctx.best.id == before && ctx.best.t == before_t) return;
+  if (ctx.best->id == before && ctx.best->t == before_t) return;
   // rtcIntersect1 passes one ray (N == 1); every valid lane is that ray.
-  const float tfar = float_up(ctx.best.t - ctx.shift);
+  const float tfar = float_up(ctx.best->t - ctx.shift);
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   for (unsigned i = 0; i < args->N; ++i) {
@@ -376,14 +376,15 @@ bool EmbreeQuery::filter_takes(const Ray& ray, glm::dvec3& inv) const {
   return std::isfinite(inv.x) && std::isfinite(inv.y) && std::isfinite(inv.z);  // and dir is not NaN
 }
 
-Hit EmbreeQuery::closest_filtered(const Ray& ray, double tmin, int32_t skip, const glm::dvec3& inv) const {
+void EmbreeQuery::closest_filtered(const Ray& ray, double tmin, int32_t skip, const glm::dvec3& inv, Hit& best) const {
   QueryContext ctx;
+  ctx.best = &best;
   ctx.ray = &ray;
   ctx.tmin = tmin;
   ctx.skip = skip;
   for (int32_t id : brute_ids_) consider(ctx, scene_.objects[id], id);
   std::array<double, BoxFilter::kMaxObjects> enter, leave;
-  const uint32_t entered = filter_->clip(ray.origin, inv, tmin, ctx.best.t, std::span(enter).first(filter_->padded_size()),
+  const uint32_t entered = filter_->clip(ray.origin, inv, tmin, ctx.best->t, std::span(enter).first(filter_->padded_size()),
                                          std::span(leave).first(filter_->padded_size()));
   // The boxes the ray enters, nearest first (insertion sort: a handful).
   std::array<uint8_t, BoxFilter::kMaxObjects> order;
@@ -396,11 +397,10 @@ Hit EmbreeQuery::closest_filtered(const Ray& ray, double tmin, int32_t skip, con
   }
   for (size_t i = 0; i < count; ++i) {
     const size_t k = order[i];
-    if (enter[k] > ctx.best.t) break;  // this box and the rest start beyond the best hit (a tie may still win)
+    if (enter[k] > ctx.best->t) break;  // this box and the rest start beyond the best hit (a tie may still win)
     const int32_t id = filter_->id(k);
     consider(ctx, scene_.objects[id], id);
   }
-  return ctx.best;
 }
 
 int32_t EmbreeQuery::occluder_filtered(const Ray& ray, double tmax, const glm::dvec3& inv) const {
@@ -417,28 +417,48 @@ int32_t EmbreeQuery::occluder_filtered(const Ray& ray, double tmax, const glm::d
   return kMissId;
 }
 
-Hit EmbreeQuery::closest_skipping(const Ray& ray, double tmin, int32_t skip) const {
-  if (glm::dvec3 inv; filter_takes(ray, inv)) return closest_filtered(ray, tmin, skip, inv);
+void EmbreeQuery::closest_skipping(const Ray& ray, double tmin, int32_t skip, Hit& best) const {
+  // Written field by field: a whole Hit stored at once and read back in
+  // other pieces would wait for the stores (a store-forwarding stall).
+  best.t = kInfinity;
+  best.id = kMissId;
+  if (glm::dvec3 inv; filter_takes(ray, inv)) return closest_filtered(ray, tmin, skip, inv, best);
   QueryContext ctx;
   rtcInitIntersectContext(&ctx.rtc);
+  ctx.best = &best;
   ctx.ray = &ray;
   ctx.tmin = tmin;
   ctx.skip = skip;
   for (int32_t id : brute_ids_) consider(ctx, scene_.objects[id], id);
   double t0 = 0;
   double t1 = 0;
-  if (!main_scene_ || !clip(ray, t0, t1) || !(t1 > tmin) || t0 > ctx.best.t) return ctx.best;
+  if (!main_scene_ || !clip(ray, t0, t1) || !(t1 > tmin) || t0 > ctx.best->t) return;
   ctx.shift = std::max(t0, tmin);
   if (!shift_is_exact_enough(ray, ctx.shift)) {
     for (int32_t id : bvh_ids_) consider(ctx, scene_.objects[id], id);
-    return ctx.best;
+    return;
   }
   RTCRayHit rayhit{};
-  rayhit.ray = float_ray(ray, frame_, ctx.shift, std::min(ctx.best.t, t1));
+  rayhit.ray = float_ray(ray, frame_, ctx.shift, std::min(ctx.best->t, t1));
   rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(trace_scene(), &ctx.rtc, &rayhit);
-  return ctx.best;
+}
+
+Hit EmbreeQuery::closest(const Ray& ray, double tmin) const {
+  Hit best;
+  closest_skipping(ray, tmin, kMissId, best);
+  return best;
+}
+
+Hit EmbreeQuery::closest_leaving(const Ray& ray, int32_t self) const {
+  Hit best;
+  closest_skipping(ray, 0.0, self, best);
+  return best;
+}
+
+void EmbreeQuery::closest_leaving_batch(std::span<const Ray> rays, const int32_t* self, Hit* hits) const {
+  for (size_t j = 0; j < rays.size(); ++j) closest_skipping(rays[j], 0.0, self[j], hits[j]);
 }
 
 int32_t EmbreeQuery::occluder(const Ray& ray, double tmax) const {
@@ -533,13 +553,15 @@ void EmbreeQuery::prepare_views(const glm::dvec3& eye) {
 Hit EmbreeQuery::camera_closest(const Ray& ray) const {
   const bool buffered = views_ && views_->camera && ray.origin == views_->eye && std::isfinite(max_abs(ray.dir));
   if (!buffered) return closest(ray, 0.0);
+  Hit best;
   QueryContext ctx;
+  ctx.best = &best;
   ctx.ray = &ray;
   for (int32_t id : views_->unbounded) consider(ctx, scene_.objects[id], id);
   for (int32_t id : views_->camera->candidates(ray.dir)) {
-    if (!misses_bound(ray, ctx.best.t, views_->bound_of[size_t(id)])) consider(ctx, scene_.objects[id], id);
+    if (!misses_bound(ray, best.t, views_->bound_of[size_t(id)])) consider(ctx, scene_.objects[id], id);
   }
-  return ctx.best;
+  return best;
 }
 
 namespace {

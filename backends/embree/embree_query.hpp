@@ -46,8 +46,9 @@ class EmbreeQuery final : public ObjectQuery {
   EmbreeQuery(const Scene& scene, Device& device);
   ~EmbreeQuery() override;
 
-  Hit closest(const Ray& ray, double tmin) const override { return closest_skipping(ray, tmin, kMissId); }
-  Hit closest_leaving(const Ray& ray, int32_t self) const override { return closest_skipping(ray, 0.0, self); }
+  Hit closest(const Ray& ray, double tmin) const override;
+  Hit closest_leaving(const Ray& ray, int32_t self) const override;
+  void closest_leaving_batch(std::span<const Ray> rays, const int32_t* self, Hit* hits) const override;
   int32_t occluder(const Ray& ray, double tmax) const override;
 
   // Builds the light buffers of a frame seen from `eye` (embree_view_buffers.hpp)
@@ -125,9 +126,10 @@ class EmbreeQuery final : public ObjectQuery {
   // The queries through filter_ ("Few objects" in embree_query.cpp), or
   // nothing for a ray the filter cannot take.
   bool filter_takes(const Ray& ray, glm::dvec3& inv) const;
-  // closest() that leaves object `skip` out (kMissId: none).
-  Hit closest_skipping(const Ray& ray, double tmin, int32_t skip) const;
-  Hit closest_filtered(const Ray& ray, double tmin, int32_t skip, const glm::dvec3& inv) const;
+  // closest() that leaves object `skip` out (kMissId: none), written into
+  // `best` (its prim only where it holds an object's hit).
+  void closest_skipping(const Ray& ray, double tmin, int32_t skip, Hit& best) const;
+  void closest_filtered(const Ray& ray, double tmin, int32_t skip, const glm::dvec3& inv, Hit& best) const;
   int32_t occluder_filtered(const Ray& ray, double tmax, const glm::dvec3& inv) const;
 
   // The layers an update adds (embree_update.hpp).

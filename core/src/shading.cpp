@@ -68,6 +68,21 @@ static_assert(std::size(kPhaseNames) == kPhases);
 
 const char* ray_kind_name(int kind) { return kRayKindNames[kind]; }
 
+struct Shader::Surface {
+  glm::dvec3 position;
+  glm::dvec3 outward;  // the surface's outward normal N
+  glm::dvec3 n;        // N facing the incoming ray
+  bool front;
+  double cosi;
+  double t;
+  glm::dvec3 color;  // c: material colour times texture
+  double alpha;      // a
+  const Material* material;
+  int32_t id;  // the object hit
+  double epsilon;
+  Ray spawn(const glm::dvec3& dir, double side) const { return {position + side * epsilon * n, dir}; }
+};
+
 Shader::Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, PhaseProfile* profile)
     : scene_(scene),
       query_(query),
@@ -89,29 +104,10 @@ Shader::Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, 
 
 Shader::~Shader() = default;
 
-struct Shader::Surface {
-  glm::dvec3 position;
-  glm::dvec3 outward;  // the surface's outward normal N
-  glm::dvec3 n;        // N facing the incoming ray
-  bool front;
-  double cosi;
-  double t;
-  glm::dvec3 color;  // c: material colour times texture
-  double alpha;      // a
-  const Material* material;
-  int32_t id;  // the object hit
-  double epsilon;
-  Ray spawn(const glm::dvec3& dir, double side) const { return {position + side * epsilon * n, dir}; }
-};
-
-Hit Shader::with_light_spheres(const Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const {
-  if (lights.empty()) return hit;
-  Hit light = intersect_light_spheres(scene_, lights, ray, tmin, hit.t);
-  return light.t < hit.t ? light : hit;  // equal t: the object wins
-}
-
 Hit Shader::closest(const Ray& ray, double tmin) const {
-  return with_light_spheres(query_.closest(ray, tmin), ray, tmin, sphere_lights_);
+  Hit hit = query_.closest(ray, tmin);
+  add_light_spheres(hit, ray, tmin, sphere_lights_);
+  return hit;
 }
 
 // A light sphere some ray from `eye` in the cone meets: its centre within
@@ -135,12 +131,24 @@ void Shader::camera_hits(std::span<const Ray> rays, Hit* hits) const {
   PhaseScope scope(profile_, kPhaseCameraRays);
   query_.camera_closest_batch(rays, hits);
   if (camera_sphere_lights_.empty()) return;
-  for (size_t j = 0; j < rays.size(); ++j) hits[j] = with_light_spheres(hits[j], rays[j], 0.0, camera_sphere_lights_);
+  for (size_t j = 0; j < rays.size(); ++j) add_light_spheres(hits[j], rays[j], 0.0, camera_sphere_lights_);
 }
 
-Hit Shader::closest_secondary(const Ray& ray, int32_t leaving) const {
-  PhaseScope scope(profile_, kPhaseSecondaryRays);
-  return with_light_spheres(query_.closest_leaving(ray, leaving), ray, 0.0, sphere_lights_);
+void Shader::add_light_spheres(Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const {
+  if (lights.empty()) return;
+  const Hit light = intersect_light_spheres(scene_, lights, ray, tmin, hit.t);
+  if (!(light.t < hit.t)) return;  // equal t: the object wins
+  hit.t = light.t;
+  hit.id = light.id;
+}
+
+void Shader::wave_closest() {
+  wave_hits_.resize(wave_.size());
+  {
+    PhaseScope scope(profile_, kPhaseSecondaryRays);
+    query_.closest_leaving_batch(wave_.rays, wave_.leaving.data(), wave_hits_.data());
+  }
+  for (size_t i = 0; i < wave_.size(); ++i) add_light_spheres(wave_hits_[i], wave_.rays[i], 0.0, sphere_lights_);
 }
 
 // The object a ray spawned on the side s.n faces cannot meet again, or
@@ -302,36 +310,29 @@ void Shader::trace_wave(std::span<const Ray> camera_rays, const Hit* camera_hits
   const uint32_t first = uint32_t(results_.size());
   results_.resize(results_.size() + camera_rays.size());
   wave_.clear();
-  for (size_t j = 0; j < camera_rays.size(); ++j) {
-    PathRay& path = wave_.emplace_back();
-    path.ray = camera_rays[j];
-    path.w = glm::dvec3(1.0);
-    path.sample = first + uint32_t(j);
-    path.leaving = kMissId;
-    path.kind = kCameraRay;
-  }
+  for (size_t j = 0; j < camera_rays.size(); ++j)
+    wave_.add(camera_rays[j], kMissId, glm::dvec3(1.0), first + uint32_t(j), kCameraRay);
   for (int depth = 1; !wave_.empty(); ++depth) {
     // The wave's queries first, all together, then its shading in order.
     const Hit* hits = camera_hits;
     if (depth > 1) {
-      wave_hits_.resize(wave_.size());
-      for (size_t i = 0; i < wave_.size(); ++i) wave_hits_[i] = closest_secondary(wave_[i].ray, wave_[i].leaving);
+      wave_closest();
       hits = wave_hits_.data();
     }
     // Then the surfaces at its hits, each independent of the others, so
     // that one's plugin call and texture lookup overlap the next's.
     wave_surfaces_.resize(wave_.size());
     for (size_t i = 0; i < wave_.size(); ++i)
-      if (hits[i].id >= 0) surface_at(wave_[i].ray, hits[i], wave_surfaces_[i]);
+      if (hits[i].id >= 0) surface_at(wave_.rays[i], hits[i], wave_surfaces_[i]);
     next_wave_.clear();
     for (size_t i = 0; i < wave_.size(); ++i) {
-      const PathRay& path = wave_[i];
+      const PathRay& path = wave_.paths[i];
       ++counts_.n[size_t(path.kind)];
       note(uint32_t(hits[i].id));
       if (path.kind == kShade1Ray)
-        shade1_hit(path, hits[i], wave_surfaces_[i]);
+        shade1_hit(wave_.rays[i], path, hits[i], wave_surfaces_[i]);
       else
-        shade_hit(path, hits[i], wave_surfaces_[i], depth, max_depth);
+        shade_hit(wave_.rays[i], path, hits[i], wave_surfaces_[i], depth, max_depth);
     }
     std::swap(wave_, next_wave_);
   }
@@ -341,8 +342,7 @@ void Shader::trace_wave(std::span<const Ray> camera_rays, const Hit* camera_hits
   }
 }
 
-void Shader::shade1_hit(const PathRay& path, const Hit& hit, const Surface& s) {
-  const Ray& ray = path.ray;
+void Shader::shade1_hit(const Ray& ray, const PathRay& path, const Hit& hit, const Surface& s) {
   if (!hit.found()) return add_known_term(path.sample, path.w, background_radiance(scene_, ray.dir));
   if (hit.id < 0) return add_known_term(path.sample, path.w, scene_.lights[size_t(-2 - hit.id)].color);
   const int32_t point = local_light(s, ray.dir);
@@ -353,8 +353,8 @@ void Shader::shade1_hit(const PathRay& path, const Hit& hit, const Surface& s) {
   add_point_term(path.sample, path.w, point);
 }
 
-void Shader::shade_hit(const PathRay& path, const Hit& hit, const Surface& s, int depth, int max_depth) {
-  const Ray& ray = path.ray;
+void Shader::shade_hit(const Ray& ray, const PathRay& path, const Hit& hit, const Surface& s, int depth,
+                       int max_depth) {
   SampleResult& result = results_[path.sample];
   if (depth == 1) result.first_id = hit.id;
   if (!hit.found()) return add_known_term(path.sample, path.w, background_radiance(scene_, ray.dir));

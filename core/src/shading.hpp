@@ -64,9 +64,9 @@ class Shader {
   // The samples a caller traces between finish() calls, as a rule (a 16x16
   // tile at 1 spp); more cost only memory.
   static constexpr size_t kSamplesPerFinish = 256;
-  // With a profile, the time of every query and of each whole sample is
-  // added to it (shading: the sample's time less its queries). The clock
-  // reads cost some 50 ns a ray, so a profiled frame runs a little slower.
+  // With a profile, the time of every batch of queries and of each whole
+  // wave is added to it (shading: the wave's time less its queries). The
+  // clock reads cost some 50 ns each, so a profiled frame runs a little slower.
   Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, PhaseProfile* profile = nullptr);
   ~Shader();
   Shader(const Shader&) = delete;
@@ -101,21 +101,49 @@ class Shader {
     Radiance value;
     uint32_t sample;  // whose radiance it adds to (an index into results_)
   };
-  // A ray of a wave: what its answer is worth to its sample (w), and what to
-  // do with its hit (kind: kShade1Ray ends the path there).
+  // A wave ray's path: what the ray's answer is worth to its sample (w),
+  // and what to do with its hit (kind: kShade1Ray ends the path there).
   struct PathRay {
-    Ray ray;
     glm::dvec3 w;
     uint32_t sample;
-    int32_t leaving;  // an object the ray cannot meet (left_behind), or kMissId
-    int32_t kind;     // a RayKind
+    int32_t kind;  // a RayKind
+  };
+  // The rays of one bounce, structure of arrays: the rays (as the query
+  // takes them), the object each cannot meet (left_behind, or kMissId), and
+  // their paths.
+  struct Wave {
+    std::vector<Ray> rays;
+    std::vector<int32_t> leaving;
+    std::vector<PathRay> paths;
+    size_t size() const { return rays.size(); }
+    bool empty() const { return rays.empty(); }
+    void reserve(size_t n) {
+      rays.reserve(n);
+      leaving.reserve(n);
+      paths.reserve(n);
+    }
+    void clear() {
+      rays.clear();
+      leaving.clear();
+      paths.clear();
+    }
+    // Each field written in place (see add_known_term).
+    void add(const Ray& ray, int32_t left, const glm::dvec3& w, uint32_t sample, int32_t kind) {
+      rays.push_back(ray);
+      leaving.push_back(left);
+      PathRay& path = paths.emplace_back();
+      path.w = w;
+      path.sample = sample;
+      path.kind = kind;
+    }
   };
   // The surface at an object hit, written field by field into `s`.
   void surface_at(const Ray& ray, const Hit& hit, Surface& s) const;
-  Hit with_light_spheres(const Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const;
-  // The closest hit of a secondary ray. `leaving`: an object it cannot
-  // meet (left_behind), or kMissId.
-  Hit closest_secondary(const Ray& ray, int32_t leaving) const;
+  // `hit` becomes the closest of `lights`' spheres where one is closer (its
+  // prim is then unread).
+  void add_light_spheres(Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const;
+  // The closest hits of the wave's rays, light spheres included, into wave_hits_.
+  void wave_closest();
   int32_t left_behind(const Surface& s) const;
   void note_light_sphere(SampleResult& result, const Ray& ray, const Hit& hit) const;
   // The local light at s seen along dir: a point of the batch (its index).
@@ -126,16 +154,11 @@ class Shader {
   // to next_wave_ (a Shade1 ray, then the path's next ray unless `depth` is
   // the last).
   // `s`: the surface at an object hit (surface_at), unread for a miss.
-  void shade_hit(const PathRay& path, const Hit& hit, const Surface& s, int depth, int max_depth);
+  void shade_hit(const Ray& ray, const PathRay& path, const Hit& hit, const Surface& s, int depth, int max_depth);
   // A Shade1 ray's hit: the radiance it brings back (a single bounce).
-  void shade1_hit(const PathRay& path, const Hit& hit, const Surface& s);
+  void shade1_hit(const Ray& ray, const PathRay& path, const Hit& hit, const Surface& s);
   void spawn_ray(const PathRay& from, const glm::dvec3& w, const Ray& ray, int32_t kind, int32_t leaving) {
-    PathRay& next = next_wave_.emplace_back();
-    next.ray = ray;
-    next.w = w;
-    next.sample = from.sample;
-    next.leaving = leaving;
-    next.kind = kind;
+    next_wave_.add(ray, leaving, w, from.sample, kind);
   }
   // The terms are written field by field into their element, never built
   // whole on the stack and copied: such a copy's 16-byte loads straddle the
@@ -180,7 +203,7 @@ class Shader {
   std::unique_ptr<LightLanes> lanes_;  // the shading points waiting for their light
   std::vector<SampleResult> results_;  // the samples traced since the last finish()
   std::vector<Term> terms_;            // every sample's, in the order their paths make them
-  std::vector<PathRay> wave_, next_wave_;  // the rays of this bounce and of the next
+  Wave wave_, next_wave_;                  // the rays of this bounce and of the next
   std::vector<Hit> wave_hits_;             // wave_'s closest hits
   std::vector<Surface> wave_surfaces_;     // the surfaces at them (object hits only)
   size_t terms_lit_ = 0;  // terms_ before this index have every light computed

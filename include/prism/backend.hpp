@@ -185,8 +185,8 @@ class Backend {
 
 // 3: Backend::update; 4: RenderSettings::profile; 5: PrismBackendDesc::layout_fingerprint;
 // 6: Backend::set_precision; 7: ObjectQuery::light_keys and keyed_light_occluder;
-// 8: ObjectQuery::camera_closest_batch and keyed_light_occluders
-#define PRISM_BACKEND_ABI_VERSION 8u
+// 8: ObjectQuery::camera_closest_batch and keyed_light_occluders; 9: ObjectQuery::closest_leaving_batch
+#define PRISM_BACKEND_ABI_VERSION 9u
 #define PRISM_BACKEND_ENTRY_SYMBOL "prism_backend_entry"
 
 struct PrismBackendProbe {

@@ -55,6 +55,12 @@ class ObjectQuery {
     (void)self;
     return closest(ray, 0.0);
   }
+  // closest_leaving for many rays: hits[j] is closest_leaving(rays[j],
+  // self[j]), bit for bit (its prim only where it holds an object's hit).
+  // A backend may write each answer in place rather than return it.
+  virtual void closest_leaving_batch(std::span<const Ray> rays, const int32_t* self, Hit* hits) const {
+    for (size_t j = 0; j < rays.size(); ++j) hits[j] = closest_leaving(rays[j], self[j]);
+  }
   // `clear` names objects the caller already knows do not block the ray; a
   // query may skip them (the answer is the same).
   virtual int32_t light_occluder(size_t light, const Ray& ray, double tmax, KnownClear clear = {}) const {

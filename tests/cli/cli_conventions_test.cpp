@@ -56,7 +56,7 @@ TEST_F(Conventions, VersionFlagAndCommandPrintTheVersions) {
   ASSERT_TRUE(ExitedWith(command, 0));
   EXPECT_EQ(flag.out, command.out);
   // CMakeLists.txt's project version; PRISM_PRIMITIVE_ABI_VERSION and PRISM_BACKEND_ABI_VERSION.
-  EXPECT_EQ(flag.out.rfind("prism 0.1.0\nplugin ABI: primitive 6, backend 8\nbackends:\n", 0), 0u) << flag;
+  EXPECT_EQ(flag.out.rfind("prism 0.1.0\nplugin ABI: primitive 6, backend 9\nbackends:\n", 0), 0u) << flag;
   // The reference backend's plugin version and what its probe says.
   EXPECT_NE(flag.out.find("\n  reference   1.0.0    "), std::string::npos) << flag;
   if (has_backend("embree")) {

@@ -62,7 +62,7 @@ Backend* no_create() { return nullptr; }
 
 TEST(BackendFingerprint, BackendDescCarriesThisBuildsFingerprint) {
   constexpr PrismBackendDesc desc = backend_desc("mine", "1.0.0", 7, no_probe, no_create);
-  EXPECT_EQ(desc.abi_version, 8u);
+  EXPECT_EQ(desc.abi_version, 9u);
   EXPECT_EQ(desc.desc_size, sizeof(PrismBackendDesc));
   EXPECT_EQ(desc.layout_fingerprint, backend_layout_fingerprint());
   EXPECT_EQ(offsetof(PrismBackendDesc, layout_fingerprint), 8u);
