@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <random>
+#include <span>
 #include <string_view>
 
 #include "prism/sdk/plugin_testing.hpp"
@@ -133,6 +134,26 @@ TEST(TorusTest, OcclusionTestSeesACrossingStrictlyInsideTheBounds) {
   EXPECT_FALSE(s.occluded(o, -d, 0.0, kInf));  // away from the torus
 }
 
+// Along o + t d, with crossings at `crossing` (ascending, derived by hand):
+// from each window's end, the closest hit lies within 1e-9 of the next
+// crossing; a window (tmin, tmax) that ends `gap` short of it sees nothing,
+// one that ends `gap` past it or starts `gap` before it sees it; past the
+// last crossing nothing is seen.
+void expect_windows_around(Shape& s, const dvec3& o, const dvec3& d, std::span<const double> crossing, double gap) {
+  double tmin = 0.0;
+  for (double want : crossing) {
+    const auto hit = s.intersect(o, d, tmin);
+    ASSERT_TRUE(hit) << want;
+    EXPECT_NEAR(hit->t, want, 1e-9);
+    EXPECT_FALSE(s.occluded(o, d, tmin, want - gap)) << want;
+    EXPECT_TRUE(s.occluded(o, d, tmin, want + gap)) << want;
+    EXPECT_TRUE(s.occluded(o, d, want - gap, kInf)) << want;
+    EXPECT_FALSE(s.intersect(o, d, tmin, want - gap)) << want;
+    tmin = want + gap;
+  }
+  EXPECT_FALSE(s.occluded(o, d, tmin, kInf));  // past the last crossing
+}
+
 // The equatorial ray of the test above from a million units away: the
 // crossings at x = -1.25, -0.75, 0.75, 1.25 (t = 1e6 + x, exact in double),
 // and windows (tmin, tmax) that end or start a micro-unit from one of them,
@@ -142,17 +163,7 @@ TEST(TorusTest, WindowsAroundCrossingsFromAfar) {
   Shape s = torus(1.0, 0.25);
   const dvec3 o(-1e6, 0, 0), d(1, 0, 0);
   const double crossing[4] = {999998.75, 999999.25, 1000000.75, 1000001.25};
-  double tmin = 0.0;
-  for (double want : crossing) {
-    const auto hit = s.intersect(o, d, tmin);
-    ASSERT_TRUE(hit) << want;
-    EXPECT_NEAR(hit->t, want, 1e-9);
-    EXPECT_FALSE(s.occluded(o, d, tmin, want - 1e-6)) << want;
-    EXPECT_TRUE(s.occluded(o, d, tmin, want + 1e-6)) << want;
-    EXPECT_FALSE(s.intersect(o, d, tmin, want - 1e-6)) << want;
-    tmin = want + 1e-6;
-  }
-  EXPECT_FALSE(s.occluded(o, d, tmin, kInf));  // past the last crossing
+  expect_windows_around(s, o, d, crossing, 1e-6);
   EXPECT_FALSE(s.occluded(o, d, 999998.75 + 1e-6, 999999.25 - 1e-6));  // inside the tube
   EXPECT_FALSE(s.occluded(o, d, 999999.25 + 1e-6, 1000000.75 - 1e-6));  // across the hole
   // A ray beside the tube, 1e-6 outside its outer equator (x = 1.25 + 1e-6,
@@ -164,25 +175,18 @@ TEST(TorusTest, WindowsAroundCrossingsFromAfar) {
   EXPECT_NEAR(grazing->t, 1e6 - std::sqrt((1.25 - x) * (1.25 + x)), 1e-9);
 }
 
-// Windows that end or start 1e-8 from each crossing of the equatorial ray
-// from x = -10 (t = 8.75, 9.25, 10.75, 11.25: x = -+1.25, -+0.75), and the
-// stretches between them: the occlusion test's Bernstein proof (a window
-// clear of the tube by more than rounding) must never claim a window that
-// holds a crossing, nor the scan miss one just inside.
+// The same from x = -10 (t = 8.75, 9.25, 10.75, 11.25), windows 1e-8 from
+// each crossing: the occlusion test's Bernstein proof (a window clear of
+// the tube by more than rounding) must never claim a window that holds a
+// crossing, nor the scan miss one just inside.
 TEST(TorusTest, WindowsAHundredthOfAMicronFromEachCrossing) {
   Shape s = torus(1.0, 0.25);
   const dvec3 o(-10, 0, 0), d(1, 0, 0);
   const double crossing[4] = {8.75, 9.25, 10.75, 11.25};
-  double from = 0.0;
-  for (double c : crossing) {
-    EXPECT_FALSE(s.occluded(o, d, from, c - 1e-8)) << c;
-    EXPECT_TRUE(s.occluded(o, d, from, c + 1e-8)) << c;
-    EXPECT_TRUE(s.occluded(o, d, c - 1e-8, kInf)) << c;
-    EXPECT_FALSE(s.intersect(o, d, from, c - 1e-8)) << c;
-    from = c + 1e-8;
-  }
-  EXPECT_FALSE(s.occluded(o, d, from, kInf));  // past the last crossing
-  EXPECT_FALSE(s.occluded(o, -d, 0.0, kInf));  // away from the torus
+  expect_windows_around(s, o, d, crossing, 1e-8);
+  EXPECT_FALSE(s.occluded(o, d, 8.75 + 1e-8, 9.25 - 1e-8));   // inside the tube
+  EXPECT_FALSE(s.occluded(o, d, 9.25 + 1e-8, 10.75 - 1e-8));  // across the hole
+  EXPECT_FALSE(s.occluded(o, -d, 0.0, kInf));                 // away from the torus
 }
 
 TEST(TorusTest, RayFromInsideTubeExitsThroughTopWithSpecUv) {
