@@ -160,8 +160,9 @@ real4 torus_quartic(TorusScan sc) {
 // - The interval is (tmin, tmax] in s widened by 1e-9 (1 + h), a thousand
 //   times the solver's tolerance, and by 64 ulps of the t's over big, so a
 //   root just outside cannot round in, nor a piece's ends.
-// In float the margin exceeds every coefficient and nothing is shown.
+// In float the margin would exceed every coefficient: it is not tried.
 bool torus_clear_in_window(TorusScan sc, real4 c, real h) {
+  if (PRISM_REAL_EPSILON > R(1.0) / R(10000000000.0)) return false;  // float: the margin is out of reach (a constant: folded away)
   real widen = R(1.0) / R(1000000000.0) * (R(1.0) + h) +
                R(64.0) * PRISM_REAL_EPSILON * (abs(sc.tf) + abs(sc.tmin) + min(abs(sc.tmax), abs(sc.tf) + sc.big * h)) / sc.big;
   real lo = max(-h, (sc.tmin - sc.tf) / sc.big - widen);
