@@ -149,7 +149,7 @@ class EmbreeQuery final : public ObjectQuery {
     double light_reach = 0;            // how far a shadow ray may end from its point light
     double extent = 0;                 // the largest |coordinate| of the objects and lights
     glm::dvec3 eye{0};
-    std::optional<PointBuffer> camera;
+    std::optional<ApexCones> camera;  // no cells: a tile's rays are a narrow cone (camera_closest_batch)
     std::vector<Light> lights;                         // as the buffers below were built
     std::vector<std::optional<PointBuffer>> points;    // by light: point lights
     std::vector<std::optional<ParallelBuffer>> parallels;  // by light: directional lights

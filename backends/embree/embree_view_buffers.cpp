@@ -86,7 +86,7 @@ glm::dvec3 face_direction(const FaceFrame& f, double u, double v) {
   return glm::normalize(d);
 }
 
-using Cone = PointBuffer::Cone;
+using Cone = ApexCones::Cone;
 
 Cone cell_cone(int face, int i, int j, int resolution) {
   const FaceFrame f = face_frame(face);
@@ -154,18 +154,13 @@ CellLists::CellLists(const std::vector<std::vector<int32_t>>& cells) {
   }
 }
 
-PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach)
-    : apex_(apex), reach_(reach), resolution_(cube_resolution(spheres.size())) {
-  object_cones_.reserve(spheres.size());
+ApexCones::ApexCones(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach)
+    : apex_(apex), reach_(reach) {
+  cones_.reserve(spheres.size());
+  ids_.reserve(spheres.size());
   for (const BoundSphere& s : spheres) {
-    object_cones_.push_back(sphere_cone(apex, s, reach));
-    object_ids_.push_back(s.id);
-  }
-  // Cell by cell, so each list is filled in place (ascending when `spheres` is).
-  for (const Cone& cell : cell_cones(resolution_)) {
-    for (size_t k = 0; k < spheres.size(); ++k)
-      if (cones_meet(cell, object_cones_[k])) cells_.add(spheres[k].id);
-    cells_.end_cell();
+    cones_.push_back(sphere_cone(apex, s, reach));
+    ids_.push_back(s.id);
   }
 }
 
@@ -175,14 +170,24 @@ PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> sp
 // is ill-conditioned, so it is widened by 1e-9 in cosine first (over 1e-8
 // rad for any half-angle under ~0.1 rad, against a cosine's rounding of a
 // few ulps); past 60 degrees every sphere is listed.
-size_t PointBuffer::cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const {
+size_t ApexCones::cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const {
   const double c = cos_half - 1e-9;
   const bool wide = !(c > 0.5);
   const Cone cone{axis, c, std::sqrt(std::max(0.0, (1 - c) * (1 + c)))};
   size_t count = 0;
-  for (size_t k = 0; k < object_cones_.size(); ++k)
-    if (wide || cones_meet(cone, object_cones_[k])) out[count++] = object_ids_[k];
+  for (size_t k = 0; k < cones_.size(); ++k)
+    if (wide || cones_meet(cone, cones_[k])) out[count++] = ids_[k];
   return count;
+}
+
+PointBuffer::PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach)
+    : cones_(apex, spheres, reach), resolution_(cube_resolution(spheres.size())) {
+  // Cell by cell, so each list is filled in place (ascending when `spheres` is).
+  for (const Cone& cell : cell_cones(resolution_)) {
+    for (size_t k = 0; k < spheres.size(); ++k)
+      if (cones_meet(cell, cones_.cones()[k])) cells_.add(spheres[k].id);
+    cells_.end_cell();
+  }
 }
 
 namespace {
@@ -270,9 +275,9 @@ int32_t PointBuffer::cell_of(double x, double y, double z) const { return cube_c
 
 void PointBuffer::cells_toward(const RayLanes& rays, int32_t* cells, int width) const {
 #if defined(__x86_64__)
-  if (width == 4 || (width == 0 && runs_avx2())) return toward_lanes4(rays, apex_, reach_, resolution_, cells);
+  if (width == 4 || (width == 0 && runs_avx2())) return toward_lanes4(rays, apex(), reach(), resolution_, cells);
 #endif
-  toward_lanes2(rays, apex_, reach_, resolution_, cells);
+  toward_lanes2(rays, apex(), reach(), resolution_, cells);
 }
 
 ParallelBuffer::ParallelBuffer(const glm::dvec3& dir, std::span<const BoundSphere> spheres, double extent) : dir_(dir) {

@@ -2,8 +2,9 @@
 // start at one point; the shadow rays toward a point light all end within a
 // hair of one point; those toward a directional light all run along one
 // direction. For each, a buffer built once lists every bounded object such
-// a ray could meet, by the ray's direction (a cube map around the point) or
-// by where it starts (a grid across the light's direction): Haines and
+// a ray could meet, by the ray's direction (each object's cone of
+// directions from the eye; a cube map of them around a point light) or by
+// where it starts (a grid across the light's direction): Haines and
 // Greenberg's light buffer (1986). The plugins then test only those
 // objects, in double, and Embree is not called. The lists are conservative,
 // so every answer equals the full query's; embree_view_buffers.cpp gives
@@ -55,13 +56,48 @@ class CellLists {
   std::vector<int32_t> ids_;
 };
 
+// The objects' spheres, each grown by `reach`, as cones of directions seen
+// from `apex`: which objects a bundle of rays from (within reach of) the
+// apex may meet. The camera's rays need no more than this: a tile's rays
+// are a narrow cone, tested against each object's (cone_candidates).
+class ApexCones {
+ public:
+  ApexCones(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach);
+  const glm::dvec3& apex() const { return apex_; }
+  double reach() const { return reach_; }
+  // Every object whose sphere (grown by reach) a half-line from within reach
+  // of the apex can meet along a direction within the cone around `axis`
+  // (unit) whose half-angle has cosine `cos_half`: the lists a batch of
+  // rays through one tile of an image shares. Written to `out` (room for
+  // every object), ascending when the spheres are; returns how many.
+  size_t cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const;
+  size_t size() const { return ids_.size(); }
+
+  // A cone of directions: axis, and the cosine and sine of its half-angle;
+  // `everywhere` for a sphere that holds the apex (its cone is every direction).
+  struct Cone {
+    glm::dvec3 axis{0};
+    double cos_half = 1, sin_half = 0;
+    bool everywhere = false;
+  };
+  const std::vector<Cone>& cones() const { return cones_; }  // by position in `spheres`
+  const std::vector<int32_t>& ids() const { return ids_; }
+
+ private:
+  glm::dvec3 apex_;
+  double reach_;
+  std::vector<Cone> cones_;
+  std::vector<int32_t> ids_;
+};
+
 // Rays that pass within `reach` of `apex` and go on in a direction (or come
-// from it): a cube map of directions seen from the apex.
+// from it): a cube map of directions seen from the apex, each cell listing
+// the objects whose cones (ApexCones) meet the cell's.
 class PointBuffer {
  public:
   PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach);
-  const glm::dvec3& apex() const { return apex_; }
-  double reach() const { return reach_; }
+  const glm::dvec3& apex() const { return cones_.apex(); }
+  double reach() const { return cones_.reach(); }
   // Every object whose sphere meets a half-line that starts within `reach`
   // of the apex and runs along `dir` (unit length).
   std::span<const int32_t> candidates(const glm::dvec3& dir) const {
@@ -75,30 +111,16 @@ class PointBuffer {
   // runs); every width gives the same cells.
   void cells_toward(const RayLanes& rays, int32_t* cells, int width = 0) const;
   const CellLists& cells() const { return cells_; }  // cell k's list: cells()[k]
-  // Every object whose sphere (grown by reach) a half-line from within reach
-  // of the apex can meet along a direction within the cone around `axis`
-  // (unit) whose half-angle has cosine `cos_half`: the lists a batch of
-  // rays through one tile of an image shares. Written to `out` (room for
-  // every object of the buffer), ascending when the buffer's spheres are;
-  // returns how many.
-  size_t cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const;
-
-  // A cone of directions: axis, and the cosine and sine of its half-angle;
-  // `everywhere` for a sphere that holds the apex (its cone is every direction).
-  struct Cone {
-    glm::dvec3 axis{0};
-    double cos_half = 1, sin_half = 0;
-    bool everywhere = false;
-  };
+  size_t cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const {
+    return cones_.cone_candidates(axis, cos_half, out);
+  }
+  using Cone = ApexCones::Cone;
 
  private:
   int32_t cell_of(double x, double y, double z) const;
-  glm::dvec3 apex_;
-  double reach_;
+  ApexCones cones_;
   int resolution_;  // cells per face edge
   CellLists cells_;
-  std::vector<Cone> object_cones_;  // by position in `spheres`, as seen from the apex
-  std::vector<int32_t> object_ids_;
 };
 
 // Rays along one direction (exactly `dir`): a grid over the plane across it,

@@ -1,6 +1,7 @@
 #include "prism/camera.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace prism {
@@ -30,6 +31,29 @@ CameraRays::Cone CameraRays::cone(int x0, int y0, int x1, int y1) const {
   double cos_half = 1.0;
   for (const glm::dvec3& corner : corners) cos_half = std::min(cos_half, glm::dot(axis, corner));
   return {axis, cos_half - 1e-9};
+}
+
+void CameraRays::make_batch(const double* x, const double* y, size_t count, Ray* out) const {
+  // make()'s expressions in glm's order of operations: forward + u right +
+  // v up sums left to right, a dot product is (x + y) + z, and normalize
+  // multiplies by 1 / sqrt of it.
+  std::array<double, kBatch> dx, dy, dz;
+  const glm::dvec3 f = camera_.forward, r = camera_.right, up = camera_.up;
+  for (size_t q = 0; q < count; ++q) {
+    const double u = (x[q] / width_ * 2.0 - 1.0) * tan_half_ * aspect_;
+    const double v = (1.0 - y[q] / height_ * 2.0) * tan_half_;
+    const double ex = f.x + u * r.x + v * up.x, ey = f.y + u * r.y + v * up.y, ez = f.z + u * r.z + v * up.z;
+    const double scale = 1.0 / std::sqrt(ex * ex + ey * ey + ez * ez);
+    dx[q] = ex * scale;
+    dy[q] = ey * scale;
+    dz[q] = ez * scale;
+  }
+  for (size_t q = 0; q < count; ++q) {
+    out[q].origin = camera_.position;
+    out[q].dir.x = dx[q];
+    out[q].dir.y = dy[q];
+    out[q].dir.z = dz[q];
+  }
 }
 
 Ray camera_ray(const Camera& camera, int width, int height, int i, int j, glm::dvec2 offset) {

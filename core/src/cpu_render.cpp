@@ -1,11 +1,13 @@
 #include "prism/cpu_render.hpp"
 
 #include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
-#include <mutex>
+#include <memory>
 
 #include "prism/camera.hpp"
 #include "prism/cancel.hpp"
@@ -53,16 +55,31 @@ void store_pixel(const Frame& f, int i, int j, std::span<const SampleResult> sam
 static_assert(Shader::kSamplesPerFinish == size_t(kTileSize) * kTileSize);
 
 // The camera rays of up to this many samples are made before they are
-// traced, in a loop without calls, so that their divisions and square roots
-// overlap; made one at a time between traces, each waited for its own
-// (~4 % of a showcase frame by perf).
+// traced, together (CameraRays::make_batch), so that their divisions and
+// square roots overlap; made one at a time between traces, each waited for
+// its own (~4 % of a showcase frame by perf).
 constexpr size_t kRaysMadeAhead = Shader::kSamplesPerFinish;
+static_assert(kRaysMadeAhead <= CameraRays::kBatch);
 
 // Room for kRaysMadeAhead samples, kept across the tiles of a range.
 struct SampleBuffers {
+  std::vector<double> x = std::vector<double>(kRaysMadeAhead), y = std::vector<double>(kRaysMadeAhead);  // on the image plane
   std::vector<Ray> rays = std::vector<Ray>(kRaysMadeAhead);
   std::vector<Hit> hits = std::vector<Hit>(kRaysMadeAhead);
   std::vector<uint8_t> want_path = std::vector<uint8_t>(kRaysMadeAhead);
+};
+
+// What a render thread keeps from one range of tiles to the next: its
+// shader (whose state between tiles is its buffers and the guesses of
+// likely shadow blockers, which change no answer), its sample buffers and
+// its counts.
+struct Worker {
+  RayCounts counts;
+  PhaseProfile profile;
+  Shader shader;
+  SampleBuffers buffers;
+  Worker(const Scene& scene, const ObjectQuery& query, bool profiled)
+      : shader(scene, query, counts, profiled ? &profile : nullptr) {}
 };
 
 void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, SampleBuffers& b) {
@@ -94,9 +111,12 @@ void render_tile(const Frame& f, int tile, int tiles_x, Shader& shader, SampleBu
     for (size_t first = 0; first < samples; first += kRaysMadeAhead) {
       const size_t n = std::min(kRaysMadeAhead, samples - first);
       for (size_t q = 0; q < n; ++q, next_sample(made)) {
-        f.camera_rays.make(made.i, made.j, sample_offset(made.k), b.rays[q]);
+        const glm::dvec2 offset = sample_offset(made.k);
+        b.x[q] = made.i + offset.x;
+        b.y[q] = made.j + offset.y;
         b.want_path[q] = made.k == 0 && f.settings.aov_path;
       }
+      f.camera_rays.make_batch(b.x.data(), b.y.data(), n, b.rays.data());
       const std::span<const Ray> rays = std::span(b.rays).first(n);
       shader.camera_hits(rays, b.hits.data());
       shader.trace_samples(rays, b.hits.data(), b.want_path.data(), s.max_depth);
@@ -143,31 +163,39 @@ Image render_cpu(const Scene& scene, const ObjectQuery& query, const RenderSetti
   const int tiles = tiles_x * ((rect.height + kTileSize - 1) / kTileSize);
   std::atomic<int> done{0};
   std::atomic<uint64_t> traced{0};  // rays of the tiles done, for RenderSettings::rays_traced
-  std::mutex counts_mutex;
-  RayCounts total;
-  PhaseProfile total_profile;
+  // One worker per thread for the whole frame, built on the thread's first
+  // range of tiles: a frame splits into some 128 ranges at 640x360, and a
+  // worker per range built a shader's buffers (some 300 KB) 128 times.
+  tbb::enumerable_thread_specific<std::unique_ptr<Worker>> workers;
   auto run = [&](int begin, int end) {
-    RayCounts counts;
-    PhaseProfile profile;
-    Shader shader(scene, query, counts, settings.profile ? &profile : nullptr);  // one per range of tiles: its buffers are reused
-    SampleBuffers buffers;
-    for (int tile = begin; tile < end; ++tile) {
-      if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
-      const uint64_t before = ray_total(counts);
-      render_tile(frame, tile, tiles_x, shader, buffers);
-      const uint64_t rays = traced += ray_total(counts) - before;
-      int finished = ++done;
-      report_progress(settings, double(finished) / tiles, rays);
-    }
-    std::lock_guard lock(counts_mutex);
-    total.add(counts);
-    total_profile.add(profile);
+    std::unique_ptr<Worker>& slot = workers.local();
+    if (!slot) slot = std::make_unique<Worker>(scene, query, settings.profile);
+    Worker& w = *slot;
+    // Isolated: were a tile to wait on TBB work of its own, this thread
+    // could meanwhile take another range of this loop, with the same worker.
+    tbb::this_task_arena::isolate([&] {
+      for (int tile = begin; tile < end; ++tile) {
+        if (cancel_requested()) break;  // the rest of the range is skipped; thrown below
+        const uint64_t before = ray_total(w.counts);
+        render_tile(frame, tile, tiles_x, w.shader, w.buffers);
+        const uint64_t rays = traced += ray_total(w.counts) - before;
+        int finished = ++done;
+        report_progress(settings, double(finished) / tiles, rays);
+      }
+    });
   };
   if (parallel)
     tbb::parallel_for(tbb::blocked_range<int>(0, tiles, 1), [&](const tbb::blocked_range<int>& r) { run(r.begin(), r.end()); });
   else
     run(0, tiles);
   throw_if_cancelled();
+  RayCounts total;
+  PhaseProfile total_profile;
+  for (const std::unique_ptr<Worker>& w : workers) {
+    if (!w) continue;
+    total.add(w->counts);
+    total_profile.add(w->profile);
+  }
   add_counts(stats, total);
   if (settings.profile) {
     for (int phase = 0; phase < kPhases; ++phase)

@@ -78,13 +78,15 @@ void check_surface(const Object& object, const PrismSurface& s) {
   }
 }
 
-PrismSurface plugin_surface(const Object& object, const PrismRay& local, const PrismHit& found, bool want_uv) {
+// Written in place: returned and copied, the surface was read back in
+// 16-byte pieces across the plugin's 8-byte stores, which waited for them
+// to retire (a store-forwarding stall).
+void plugin_surface(const Object& object, const PrismRay& local, const PrismHit& found, bool want_uv, PrismSurface& s) {
   PrismHit hit = found;
   hit.flags = want_uv ? 0u : PRISM_HIT_SKIP_UV;  // whatever `intersect` left there
-  PrismSurface s{};
+  s = PrismSurface{};
   object.desc->surface(object.record(), &local, &hit, &s);
   check_surface(object, s);
-  return s;
 }
 
 // The ulps of input error the double path may carry into the local ray (the
@@ -120,36 +122,46 @@ bool reject_hit(const Object& object, double t, double tmin, double tmax) {
   return false;
 }
 
-SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by,
-                        bool want_uv) {
-  PrismRay local = to_local(object, ray);
-  PrismSurface s = plugin_surface(object, local, hit, want_uv);
-  double t = hit.t;
-  if (object.desc->refine && found_by == kIntersectDouble && ill_conditioned(local, hit.t, s)) {
+void local_surface(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by, bool want_uv,
+                   LocalSurface& out) {
+  const PrismRay local = to_local(object, ray);
+  plugin_surface(object, local, hit, want_uv, out.s);
+  out.t = hit.t;
+  if (object.desc->refine && found_by == kIntersectDouble && ill_conditioned(local, hit.t, out.s)) {
     const PrismRayExt ext = to_local_ext(object, ray);
     PrismHit polished = hit;
     object.desc->refine(object.record(), &ext, &polished);
     if (!std::isfinite(polished.t))
       throw RuntimeError(fault_message(object, "refined a hit to t = " + std::to_string(polished.t)));
     if (polished.t != hit.t) {
-      s = plugin_surface(object, local, polished, want_uv);
-      t = polished.t;
+      plugin_surface(object, local, polished, want_uv, out.s);
+      out.t = polished.t;
     }
   }
-  glm::dvec3 point = load(s.point);
-  glm::dvec3 normal = load(s.normal);
+}
+
+SurfacePoint world_surface(const Object& object, const Ray& ray, const LocalSurface& local) {
+  glm::dvec3 point = load(local.s.point);
+  glm::dvec3 normal = load(local.s.normal);
   if (object.has_rotation) {
     point = rotate(object.rotation, point);
     normal = rotate(object.rotation, normal);
   }
   SurfacePoint out;
-  out.t = t;
+  out.t = local.t;
   out.position = object.center + point;
   double length = glm::length(normal);
   // Where the normal is undefined (a quadric's singular point) the format says N = -dir.
   out.normal = (length > 0 && std::isfinite(length)) ? normal / length : -ray.dir;
-  out.uv = {s.uv[0], s.uv[1]};
+  out.uv = {local.s.uv[0], local.s.uv[1]};
   return out;
+}
+
+SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by,
+                        bool want_uv) {
+  LocalSurface local;
+  local_surface(object, ray, hit, found_by, want_uv, local);
+  return world_surface(object, ray, local);
 }
 
 WorldSphere world_bounding_sphere(const Object& object) {

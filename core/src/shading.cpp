@@ -80,6 +80,7 @@ struct Shader::Surface {
   const Material* material;
   int32_t id;  // the object hit
   double epsilon;
+  glm::dvec2 uv;  // the texture coordinates (textured materials only)
   Ray spawn(const glm::dvec3& dir, double side) const { return {position + side * epsilon * n, dir}; }
 };
 
@@ -98,8 +99,10 @@ Shader::Shader(const Scene& scene, const ObjectQuery& query, RayCounts& counts, 
   // A wave holds at most two rays per sample (a Shade1 ray and the path's next).
   wave_.reserve(2 * kSamplesPerFinish);
   next_wave_.reserve(2 * kSamplesPerFinish);
-  wave_hits_.reserve(2 * kSamplesPerFinish);
-  wave_surfaces_.reserve(2 * kSamplesPerFinish);
+  // Sized once: a wave's arrays only grow (see fit_wave_arrays).
+  wave_hits_.resize(2 * kSamplesPerFinish);
+  wave_surfaces_.resize(2 * kSamplesPerFinish);
+  wave_locals_.resize(2 * kSamplesPerFinish);
 }
 
 Shader::~Shader() = default;
@@ -142,8 +145,17 @@ void Shader::add_light_spheres(Hit& hit, const Ray& ray, double tmin, std::span<
   hit.id = light.id;
 }
 
-void Shader::wave_closest() {
+// Every element is written before it is read, so the arrays never shrink:
+// shrunk to each wave and grown back at the next tile's first, they
+// value-initialised (zeroed) some 30 KB of surfaces a tile.
+void Shader::fit_wave_arrays() {
+  if (wave_hits_.size() >= wave_.size()) return;
   wave_hits_.resize(wave_.size());
+  wave_surfaces_.resize(wave_.size());
+  wave_locals_.resize(wave_.size());
+}
+
+void Shader::wave_closest() {
   {
     PhaseScope scope(profile_, kPhaseSecondaryRays);
     query_.closest_leaving_batch(wave_.rays, wave_.leaving.data(), wave_hits_.data());
@@ -158,10 +170,16 @@ int32_t Shader::left_behind(const Surface& s) const {
   return s.front && convex ? s.id : kMissId;
 }
 
-void Shader::surface_at(const Ray& ray, const Hit& hit, Surface& s) const {
+void Shader::local_surface_at(const Ray& ray, const Hit& hit, LocalSurface& local) const {
+  const Object& object = scene_.objects[size_t(hit.id)];
+  const bool textured = scene_.materials[size_t(object.material)].texture >= 0;
+  local_surface(object, ray, hit.prim, entry_, textured, local);
+}
+
+void Shader::surface_at(const Ray& ray, const Hit& hit, const LocalSurface& local, Surface& s) const {
   const Object& object = scene_.objects[size_t(hit.id)];
   const Material& material = scene_.materials[size_t(object.material)];
-  SurfacePoint sp = surface_of(object, ray, hit.prim, entry_, material.texture >= 0);
+  const SurfacePoint sp = world_surface(object, ray, local);
   s.position = sp.position;
   s.outward = sp.normal;
   s.front = glm::dot(ray.dir, sp.normal) < 0;
@@ -172,13 +190,14 @@ void Shader::surface_at(const Ray& ray, const Hit& hit, Surface& s) const {
   s.id = hit.id;
   s.color = s.material->color;
   s.alpha = 1.0;
-  if (s.material->texture >= 0) {
-    glm::dvec2 uv = sp.uv * s.material->uv_scale + s.material->uv_offset;
-    glm::dvec4 texel = sample_texture(scene_.textures[size_t(s.material->texture)], uv);
-    s.color *= glm::dvec3(texel);
-    s.alpha = texel.a;
-  }
+  if (s.material->texture >= 0) s.uv = sp.uv * s.material->uv_scale + s.material->uv_offset;
   s.epsilon = offset_epsilon(s.position);
+}
+
+void Shader::apply_texture(Surface& s) const {
+  const glm::dvec4 texel = sample_texture(scene_.textures[size_t(s.material->texture)], s.uv);
+  s.color *= glm::dvec3(texel);
+  s.alpha = texel.a;
 }
 
 // The first-hit AOVs of a camera ray that meets light `-2 - hit.id`'s sphere.
@@ -228,6 +247,56 @@ int32_t Shader::local_light(const Surface& s, const glm::dvec3& dir) {
   return int32_t(lanes_->add(point, scene_.ambient));
 }
 
+// Each shadow ray's answer into a.blocked, ray by ray, each noted in the
+// path hash as it is taken.
+void Shader::take_shadow_answers_in_order(size_t k, const uint8_t* keyed, const int32_t* blockers) {
+  LightLanes::Arrays& a = lanes_->arrays();
+  for (size_t j = 0; j < lanes_->size(); ++j) {
+    if (!(a.ndl[j] > 0)) continue;
+    bool blocked;
+    if (keyed[j]) {
+      ++counts_.n[kShadowRay];
+      blocked = blockers[j] != kMissId;
+      if (blocked) last_blocker_[k] = blockers[j];
+    } else {
+      blocked = shadowed(k, unkeyed_shadow_ray(j), a.distance[j], a.self[j], a.key[j]);
+    }
+    note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
+    a.blocked[j] = blocked ? 1.0 : 0.0;
+  }
+}
+
+// The same answers where no hash records their order: the keyed rays' in
+// one loop without branches, then the others' one by one. Only
+// last_blocker_, a guess, may end up otherwise than in order (the last
+// keyed ray's blocker before the others'), and a guess changes no answer.
+void Shader::take_shadow_answers(size_t k, const uint8_t* keyed, const int32_t* blockers) {
+  LightLanes::Arrays& a = lanes_->arrays();
+  const size_t count = lanes_->size();
+  uint64_t cast = 0;
+  int32_t last = kMissId;
+  bool unkeyed = false;
+  for (size_t j = 0; j < count; ++j) {
+    const bool blocked = keyed[j] && blockers[j] != kMissId;
+    a.blocked[j] = blocked ? 1.0 : 0.0;
+    cast += keyed[j];
+    last = blocked ? blockers[j] : last;
+    unkeyed |= !keyed[j] && a.ndl[j] > 0;
+  }
+  counts_.n[kShadowRay] += cast;
+  if (last != kMissId) last_blocker_[k] = last;
+  if (!unkeyed) return;
+  for (size_t j = 0; j < count; ++j) {
+    if (keyed[j] || !(a.ndl[j] > 0)) continue;
+    a.blocked[j] = shadowed(k, unkeyed_shadow_ray(j), a.distance[j], a.self[j], a.key[j]) ? 1.0 : 0.0;
+  }
+}
+
+Ray Shader::unkeyed_shadow_ray(size_t j) const {
+  const LightLanes::Arrays& a = lanes_->arrays();
+  return {{a.o[0][j], a.o[1][j], a.o[2][j]}, {a.l[0][j], a.l[1][j], a.l[2][j]}};
+}
+
 void Shader::light_batch() {
   LightLanes& lanes = *lanes_;
   LightLanes::Arrays& a = lanes.arrays();
@@ -237,8 +306,8 @@ void Shader::light_batch() {
     query_.light_keys(k, lanes.shadow_rays(), a.key.data());
     // A light behind the surface (n.l <= 0) adds nothing and needs no shadow
     // ray. The keyed rays are answered together, the others one by one
-    // (shadowed() tries their likely blocker first), and every answer is
-    // taken in the rays' order.
+    // (shadowed() tries their likely blocker first); where the path hash
+    // is kept, every answer is taken in the rays' order.
     std::array<uint8_t, LightLanes::kCapacity> keyed;
     for (size_t j = 0; j < count; ++j) keyed[j] = a.ndl[j] > 0 && a.key[j] != ObjectQuery::kUnkeyed;
     std::array<int32_t, LightLanes::kCapacity> blockers;
@@ -246,20 +315,10 @@ void Shader::light_batch() {
       PhaseScope scope(profile_, kPhaseShadowRays);
       query_.keyed_light_occluders(k, lanes.shadow_rays(), a.key.data(), a.self.data(), keyed.data(), blockers.data());
     }
-    for (size_t j = 0; j < count; ++j) {
-      if (!(a.ndl[j] > 0)) continue;
-      bool blocked;
-      if (keyed[j]) {
-        ++counts_.n[kShadowRay];
-        blocked = blockers[j] != kMissId;
-        if (blocked) last_blocker_[k] = blockers[j];
-      } else {
-        const Ray ray{{a.o[0][j], a.o[1][j], a.o[2][j]}, {a.l[0][j], a.l[1][j], a.l[2][j]}};
-        blocked = shadowed(k, ray, a.distance[j], a.self[j], a.key[j]);
-      }
-      note(0x80000000u | (uint32_t(k) << 1) | (blocked ? 1u : 0u));
-      a.blocked[j] = blocked ? 1.0 : 0.0;
-    }
+    if (hashing_)
+      take_shadow_answers_in_order(k, keyed.data(), blockers.data());
+    else
+      take_shadow_answers(k, keyed.data(), blockers.data());
     // pow(0, shininess >= 1) is 0: only a highlight facing the viewer needs pow.
     for (size_t j = 0; j < count; ++j) {
       const double specular = a.specular[j], highlight = a.highlight[j];
@@ -313,17 +372,24 @@ void Shader::trace_wave(std::span<const Ray> camera_rays, const Hit* camera_hits
   for (size_t j = 0; j < camera_rays.size(); ++j)
     wave_.add(camera_rays[j], kMissId, glm::dvec3(1.0), first + uint32_t(j), kCameraRay);
   for (int depth = 1; !wave_.empty(); ++depth) {
+    fit_wave_arrays();
     // The wave's queries first, all together, then its shading in order.
     const Hit* hits = camera_hits;
     if (depth > 1) {
       wave_closest();
       hits = wave_hits_.data();
     }
-    // Then the surfaces at its hits, each independent of the others, so
-    // that one's plugin call and texture lookup overlap the next's.
-    wave_surfaces_.resize(wave_.size());
+    // Then the surfaces at its hits, each independent of the others, in
+    // three loops, each short enough per hit that one hit's long chains
+    // (the plugin's square roots and divisions, the normal's, a texel's
+    // dependent loads) overlap the next hits' work instead of holding it up:
+    // the plugins' answers, then the world-space surfaces, then the textures.
     for (size_t i = 0; i < wave_.size(); ++i)
-      if (hits[i].id >= 0) surface_at(wave_.rays[i], hits[i], wave_surfaces_[i]);
+      if (hits[i].id >= 0) local_surface_at(wave_.rays[i], hits[i], wave_locals_[i]);
+    for (size_t i = 0; i < wave_.size(); ++i)
+      if (hits[i].id >= 0) surface_at(wave_.rays[i], hits[i], wave_locals_[i], wave_surfaces_[i]);
+    for (size_t i = 0; i < wave_.size(); ++i)
+      if (hits[i].id >= 0 && wave_surfaces_[i].material->texture >= 0) apply_texture(wave_surfaces_[i]);
     next_wave_.clear();
     for (size_t i = 0; i < wave_.size(); ++i) {
       const PathRay& path = wave_.paths[i];

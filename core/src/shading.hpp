@@ -137,11 +137,18 @@ class Shader {
       path.kind = kind;
     }
   };
-  // The surface at an object hit, written field by field into `s`.
-  void surface_at(const Ray& ray, const Hit& hit, Surface& s) const;
+  // The surface at an object hit, in two steps: the plugin's answer in
+  // the object's frame, then the surface written field by field into `s`,
+  // all but its texture's part; apply_texture (for a textured material)
+  // adds that: the colour times the texel, and the texel's alpha.
+  void local_surface_at(const Ray& ray, const Hit& hit, LocalSurface& local) const;
+  void surface_at(const Ray& ray, const Hit& hit, const LocalSurface& local, Surface& s) const;
+  void apply_texture(Surface& s) const;
   // `hit` becomes the closest of `lights`' spheres where one is closer (its
   // prim is then unread).
   void add_light_spheres(Hit& hit, const Ray& ray, double tmin, std::span<const uint32_t> lights) const;
+  // wave_hits_, wave_locals_ and wave_surfaces_ at least wave_'s size.
+  void fit_wave_arrays();
   // The closest hits of the wave's rays, light spheres included, into wave_hits_.
   void wave_closest();
   int32_t left_behind(const Surface& s) const;
@@ -185,6 +192,11 @@ class Shader {
   }
   // Computes the batch's lights and puts them into the terms that wait for them.
   void light_batch();
+  // The answers of the batch's shadow rays toward light k into its lanes'
+  // `blocked`: the keyed rays' from `blockers`, the others' asked here.
+  void take_shadow_answers_in_order(size_t k, const uint8_t* keyed, const int32_t* blockers);
+  void take_shadow_answers(size_t k, const uint8_t* keyed, const int32_t* blockers);
+  Ray unkeyed_shadow_ray(size_t j) const;  // lane j's shadow ray
   // Whether an object blocks `ray` before `distance`; `self`: an object it
   // cannot meet (or kMissId); `key`: the query's light_keys for the ray.
   bool shadowed(size_t light, const Ray& ray, double distance, int32_t self, int32_t key);
@@ -204,7 +216,8 @@ class Shader {
   std::vector<SampleResult> results_;  // the samples traced since the last finish()
   std::vector<Term> terms_;            // every sample's, in the order their paths make them
   Wave wave_, next_wave_;                  // the rays of this bounce and of the next
-  std::vector<Hit> wave_hits_;             // wave_'s closest hits
+  std::vector<Hit> wave_hits_;             // wave_'s closest hits (the first wave_.size())
+  std::vector<LocalSurface> wave_locals_;  // the plugins' answers at them (object hits only)
   std::vector<Surface> wave_surfaces_;     // the surfaces at them (object hits only)
   size_t terms_lit_ = 0;  // terms_ before this index have every light computed
   bool finished_ = false;  // results_ were handed out by finish()

@@ -154,6 +154,19 @@ inline bool blocks(const Object& object, const Ray& ray, double tmax, IntersectE
 SurfacePoint surface_of(const Object& object, const Ray& ray, const PrismHit& hit,
                         IntersectEntry found_by = kIntersectDouble, bool want_uv = true);
 
+// surface_of in two halves, for callers that work out many surfaces: the
+// plugin's answer in the object's frame (checked, and polished where
+// ill-conditioned), then the world-space point and unit normal from it.
+// world_surface(object, ray, local_surface(object, ray, hit, ...)) is
+// surface_of(object, ray, hit, ...), bit for bit.
+struct LocalSurface {
+  PrismSurface s;
+  double t;
+};
+void local_surface(const Object& object, const Ray& ray, const PrismHit& hit, IntersectEntry found_by, bool want_uv,
+                   LocalSurface& out);
+SurfacePoint world_surface(const Object& object, const Ray& ray, const LocalSurface& local);
+
 // Whether a hit at `t` on the local ray, with local surface point and
 // normal `s`, is that ill-conditioned (exposed for tests).
 bool ill_conditioned(const PrismRay& local, double t, const PrismSurface& s);

@@ -1,9 +1,11 @@
 // The camera's cone over a tile of pixels (CameraRays::cone), which lets the
-// shading skip the light spheres no camera ray of a tile can meet.
+// shading skip the light spheres no camera ray of a tile can meet, and the
+// rays made a batch at a time (CameraRays::make_batch).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "prism/camera.hpp"
 
@@ -57,6 +59,41 @@ TEST(CameraRays, ATilesConeHoldsEveryRayThroughIt) {
                   << "fov " << fov << ", pixel (" << x << ", " << y << ") of the tile at (" << x0 << ", " << y0 << ")";
             }
           }
+        }
+      }
+    }
+  }
+}
+
+// The rays made a batch at a time are make()'s, bit for bit: batches of
+// every count from 1 to a whole batch (the vector loop's remainders
+// included), pixels anywhere in the image, offsets anywhere in a pixel.
+TEST(CameraRays, BatchesMakeTheSameRaysAsOneAtATime) {
+  std::mt19937_64 random(5);
+  std::uniform_real_distribution<double> offset(0.0, std::nextafter(1.0, 0.0));
+  const int width = 97, height = 61;
+  for (const double fov : {1.0, 42.0, 150.0}) {
+    const Camera camera = camera_looking_along({0.3, -0.4, -1.0}, {0.1, 1.0, 0.05}, fov);
+    const CameraRays rays(camera, width, height);
+    for (const size_t count : {size_t(1), size_t(3), size_t(4), size_t(5), size_t(127), CameraRays::kBatch}) {
+      std::vector<int> i(count), j(count);
+      std::vector<glm::dvec2> at(count);
+      std::vector<double> x(count), y(count);
+      for (size_t q = 0; q < count; ++q) {
+        i[q] = int(random() % width);
+        j[q] = int(random() % height);
+        at[q] = {offset(random), offset(random)};
+        x[q] = i[q] + at[q].x;
+        y[q] = j[q] + at[q].y;
+      }
+      std::vector<Ray> batch(count);
+      rays.make_batch(x.data(), y.data(), count, batch.data());
+      for (size_t q = 0; q < count; ++q) {
+        Ray one;
+        rays.make(i[q], j[q], at[q], one);
+        for (int c = 0; c < 3; ++c) {
+          ASSERT_EQ(batch[q].origin[c], one.origin[c]) << "fov " << fov << ", ray " << q << " of " << count;
+          ASSERT_EQ(batch[q].dir[c], one.dir[c]) << "fov " << fov << ", ray " << q << " of " << count;
         }
       }
     }

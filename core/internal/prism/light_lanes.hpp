@@ -72,6 +72,7 @@ class LightLanes {
     std::array<Lanes<double>, 3> sum;
   };
   Arrays& arrays() { return a_; }
+  const Arrays& arrays() const { return a_; }
   // The points' shadow rays toward the light of the last light_terms().
   RayLanes shadow_rays() const {
     return {{a_.o[0].data(), a_.o[1].data(), a_.o[2].data()}, {a_.l[0].data(), a_.l[1].data(), a_.l[2].data()},
