@@ -71,7 +71,6 @@ class ApexCones {
   // rays through one tile of an image shares. Written to `out` (room for
   // every object), ascending when the spheres are; returns how many.
   size_t cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const;
-  size_t size() const { return ids_.size(); }
 
   // A cone of directions: axis, and the cosine and sine of its half-angle;
   // `everywhere` for a sphere that holds the apex (its cone is every direction).
@@ -81,7 +80,6 @@ class ApexCones {
     bool everywhere = false;
   };
   const std::vector<Cone>& cones() const { return cones_; }  // by position in `spheres`
-  const std::vector<int32_t>& ids() const { return ids_; }
 
  private:
   glm::dvec3 apex_;
