@@ -129,6 +129,7 @@ class EmbreeQuery final : public ObjectQuery {
   // closest() that leaves object `skip` out (kMissId: none), written into
   // `best` (its prim only where it holds an object's hit).
   void closest_skipping(const Ray& ray, double tmin, int32_t skip, Hit& best) const;
+  void closest_traced(const Ray& ray, double tmin, int32_t skip, Hit& best) const;  // through Embree's BVH
   void closest_filtered(const Ray& ray, double tmin, int32_t skip, const glm::dvec3& inv, Hit& best) const;
   int32_t occluder_filtered(const Ray& ray, double tmax, const glm::dvec3& inv) const;
 

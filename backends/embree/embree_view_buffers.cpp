@@ -271,8 +271,6 @@ std::vector<int> lane_widths() {
   return widths;
 }
 
-int32_t PointBuffer::cell_of(double x, double y, double z) const { return cube_cell(x, y, z, resolution_); }
-
 void PointBuffer::cells_toward(const RayLanes& rays, int32_t* cells, int width) const {
 #if defined(__x86_64__)
   if (width == 4 || (width == 0 && runs_avx2())) return toward_lanes4(rays, apex(), reach(), resolution_, cells);

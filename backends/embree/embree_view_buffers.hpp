@@ -96,11 +96,6 @@ class PointBuffer {
   PointBuffer(const glm::dvec3& apex, std::span<const BoundSphere> spheres, double reach);
   const glm::dvec3& apex() const { return cones_.apex(); }
   double reach() const { return cones_.reach(); }
-  // Every object whose sphere meets a half-line that starts within `reach`
-  // of the apex and runs along `dir` (unit length).
-  std::span<const int32_t> candidates(const glm::dvec3& dir) const {
-    return cells_[size_t(cell_of(dir.x, dir.y, dir.z))];
-  }
   // Rays that end near the apex (shadow rays toward a point light there),
   // all at once: cells[j] is the cell of ray j's reversed direction, whose
   // list holds every object the ray may meet, or kNoCell where its end lies
@@ -109,13 +104,8 @@ class PointBuffer {
   // runs); every width gives the same cells.
   void cells_toward(const RayLanes& rays, int32_t* cells, int width = 0) const;
   const CellLists& cells() const { return cells_; }  // cell k's list: cells()[k]
-  size_t cone_candidates(const glm::dvec3& axis, double cos_half, int32_t* out) const {
-    return cones_.cone_candidates(axis, cos_half, out);
-  }
-  using Cone = ApexCones::Cone;
 
  private:
-  int32_t cell_of(double x, double y, double z) const;
   ApexCones cones_;
   int resolution_;  // cells per face edge
   CellLists cells_;

@@ -34,9 +34,10 @@ CameraRays::Cone CameraRays::cone(int x0, int y0, int x1, int y1) const {
 }
 
 void CameraRays::make_batch(const double* x, const double* y, size_t count, Ray* out) const {
-  // make()'s expressions in glm's order of operations: forward + u right +
-  // v up sums left to right, a dot product is (x + y) + z, and normalize
-  // multiplies by 1 / sqrt of it.
+  // glm::normalize(forward + u right + v up) in glm's order of operations:
+  // the sum left to right, a dot product as (x + y) + z, and normalize as a
+  // multiplication by 1 / sqrt of it, so the rays are the bits the format's
+  // glm expression gives.
   std::array<double, kBatch> dx, dy, dz;
   const glm::dvec3 f = camera_.forward, r = camera_.right, up = camera_.up;
   for (size_t q = 0; q < count; ++q) {

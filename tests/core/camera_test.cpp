@@ -65,9 +65,10 @@ TEST(CameraRays, ATilesConeHoldsEveryRayThroughIt) {
   }
 }
 
-// The rays made a batch at a time are make()'s, bit for bit: batches of
-// every count from 1 to a whole batch (the vector loop's remainders
-// included), pixels anywhere in the image, offsets anywhere in a pixel.
+// A ray made in a batch is the bits of the same ray made alone, and of
+// glm's expression for it: batches of every count from 1 to a whole batch
+// (the vector loop's remainders included), pixels anywhere in the image,
+// offsets anywhere in a pixel.
 TEST(CameraRays, BatchesMakeTheSameRaysAsOneAtATime) {
   std::mt19937_64 random(5);
   std::uniform_real_distribution<double> offset(0.0, std::nextafter(1.0, 0.0));
@@ -75,6 +76,11 @@ TEST(CameraRays, BatchesMakeTheSameRaysAsOneAtATime) {
   for (const double fov : {1.0, 42.0, 150.0}) {
     const Camera camera = camera_looking_along({0.3, -0.4, -1.0}, {0.1, 1.0, 0.05}, fov);
     const CameraRays rays(camera, width, height);
+    const double tan_half = std::tan(glm::radians(fov) * 0.5), aspect = double(width) / height;
+    auto by_glm = [&](double x, double y) {  // the format's camera ray, written with glm
+      const double u = (x / width * 2.0 - 1.0) * tan_half * aspect, v = (1.0 - y / height * 2.0) * tan_half;
+      return glm::normalize(camera.forward + u * camera.right + v * camera.up);
+    };
     for (const size_t count : {size_t(1), size_t(3), size_t(4), size_t(5), size_t(127), CameraRays::kBatch}) {
       std::vector<int> i(count), j(count);
       std::vector<glm::dvec2> at(count);
@@ -89,11 +95,12 @@ TEST(CameraRays, BatchesMakeTheSameRaysAsOneAtATime) {
       std::vector<Ray> batch(count);
       rays.make_batch(x.data(), y.data(), count, batch.data());
       for (size_t q = 0; q < count; ++q) {
-        Ray one;
-        rays.make(i[q], j[q], at[q], one);
+        const Ray one = rays(i[q], j[q], at[q]);
+        const glm::dvec3 want = by_glm(x[q], y[q]);
         for (int c = 0; c < 3; ++c) {
-          ASSERT_EQ(batch[q].origin[c], one.origin[c]) << "fov " << fov << ", ray " << q << " of " << count;
-          ASSERT_EQ(batch[q].dir[c], one.dir[c]) << "fov " << fov << ", ray " << q << " of " << count;
+          ASSERT_EQ(batch[q].origin[c], camera.position[c]) << "fov " << fov << ", ray " << q << " of " << count;
+          ASSERT_EQ(batch[q].dir[c], want[c]) << "fov " << fov << ", ray " << q << " of " << count;
+          ASSERT_EQ(one.dir[c], want[c]) << "fov " << fov << ", ray " << q << " alone";
         }
       }
     }

@@ -26,32 +26,20 @@ class CameraRays {
   };
   Cone cone(int x0, int y0, int x1, int y1) const;
   const glm::dvec3& position() const { return camera_.position; }
-  // The ray through pixel (i, j) at offset `offset` within it. Inline: a
-  // frame makes one per camera sample, in a loop of its own (render_cpu).
+  // The ray through pixel (i, j) at offset `offset` within it.
   Ray operator()(int i, int j, glm::dvec2 offset) const {
+    const double x = i + offset.x, y = j + offset.y;
     Ray ray;
-    make(i, j, offset, ray);
+    make_batch(&x, &y, 1, &ray);
     return ray;
   }
-  // The same ray written into `out` field by field. Returned and copied, it
-  // went through the stack: stored as its direction's 16 + 8 bytes and
-  // read back in 16-byte pieces across them, the copy waited for the
-  // stores (a store-forwarding stall, ~2 % of a showcase frame by perf).
-  void make(int i, int j, glm::dvec2 offset, Ray& out) const {
-    const double u = ((i + offset.x) / width_ * 2.0 - 1.0) * tan_half_ * aspect_;
-    const double v = (1.0 - (j + offset.y) / height_ * 2.0) * tan_half_;
-    const glm::dvec3 dir = glm::normalize(camera_.forward + u * camera_.right + v * camera_.up);
-    out.origin = camera_.position;
-    out.dir.x = dir.x;
-    out.dir.y = dir.y;
-    out.dir.z = dir.z;
-  }
   // The rays through the points (x[q], y[q]) of the image plane, in pixels
-  // (a pixel's corner plus its sample's offset), q < count <= kBatch: each
-  // the ray make() gives, bit for bit. Made stage by stage over the batch,
-  // each stage a loop the compiler runs four rays wide, so that the
-  // divisions and square roots of four rays share an instruction (one at a
-  // time they took ~2 % of a showcase frame by perf).
+  // (a pixel's corner plus its sample's offset), q < count <= kBatch, written
+  // into out[q] field by field. Made stage by stage over the batch, each
+  // stage a loop the compiler runs four rays wide, so that the divisions
+  // and square roots of four rays share an instruction (one at a time they
+  // took ~2 % of a showcase frame by perf); every ray is the same bits
+  // whatever the batch it is made in.
   static constexpr size_t kBatch = 256;
   void make_batch(const double* x, const double* y, size_t count, Ray* out) const;
 
